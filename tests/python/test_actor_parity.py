@@ -1,0 +1,115 @@
+"""Parity: the C++ Eigen actor (policy-run) equals SB3's predict(deterministic=True) to 1e-5."""
+
+import os
+import subprocess
+from pathlib import Path
+
+import gymnasium as gym
+import numpy as np
+import pytest
+import torch
+
+from guidewire_nav.export_actor import export_sac_actor
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def _policy_run() -> Path:
+    candidates = [Path(os.environ["GW_BUILD_DIR"])] if os.environ.get("GW_BUILD_DIR") else []
+    candidates += [Path("/work/main/build"), REPO / "build"]
+    for c in candidates:
+        if (c / "apps" / "policy-run").is_file():
+            return c / "apps" / "policy-run"
+    pytest.skip(f"policy-run binary not built (looked in {[str(c) for c in candidates]})")
+
+
+class BoxEnv(gym.Env):
+    def __init__(self, obs_size=20, low=(-2.0, 0.5), high=(1.0, 3.0)):
+        self.observation_space = gym.spaces.Box(-5.0, 5.0, (obs_size,), np.float32)
+        self.action_space = gym.spaces.Box(np.array(low, np.float32), np.array(high, np.float32))
+
+    def reset(self, seed=None, options=None):
+        super().reset(seed=seed)
+        return np.zeros(self.observation_space.shape, np.float32), {}
+
+    def step(self, action):
+        return np.zeros(self.observation_space.shape, np.float32), 0.0, False, False, {}
+
+
+def _model(net_arch, env, seed=0, activation=torch.nn.ReLU):
+    from stable_baselines3 import SAC
+
+    kwargs = {"activation_fn": activation}
+    if net_arch is not None:
+        kwargs["net_arch"] = net_arch
+    model = SAC("MlpPolicy", env, policy_kwargs=kwargs, seed=seed, device="cpu")
+    with torch.no_grad():  # bigger mu so tanh is exercised away from its linear part
+        model.policy.actor.mu.weight.mul_(20.0)
+        model.policy.actor.mu.bias.normal_(0.0, 0.5)
+    return model
+
+
+def _run(binary, policy_json, obs):
+    text = "\n".join(" ".join(f"{v:.9g}" for v in row) for row in obs) + "\n"
+    res = subprocess.run([str(binary), "--policy", str(policy_json)], input=text, capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr
+    return np.array([[float(v) for v in line.split()] for line in res.stdout.splitlines()])
+
+
+@pytest.mark.parametrize(
+    "net_arch,activation", [([256, 256, 256], torch.nn.ReLU), (None, torch.nn.ReLU), ([64, 32], torch.nn.Tanh)]
+)
+def test_parity_random_weights(tmp_path, net_arch, activation):
+    binary = _policy_run()
+    env = BoxEnv()
+    model = _model(net_arch, env, activation=activation)
+    n_hidden = len(net_arch) if net_arch else 2  # SB3's default is 2x256
+    out = tmp_path / "actor.json"
+    d = export_sac_actor(model, out, obs_layout="test/1", training_settings={"net_arch": net_arch})
+    assert len(d["layers"]) == n_hidden + 1
+    rng = np.random.default_rng(1)
+    obs = rng.normal(0, 2, (1000, 20)).astype(np.float32)
+    expected, _ = model.predict(obs, deterministic=True)
+    got = _run(binary, out, obs)
+    assert got.shape == expected.shape
+    assert np.all(got >= env.action_space.low - 1e-6) and np.all(got <= env.action_space.high + 1e-6)
+    assert np.max(np.abs(got - expected)) < 1e-5
+    assert np.std(expected[:, 0]) > 0.1  # the test sees varied, non-saturated actions
+
+
+def test_parity_with_vecnormalize(tmp_path):
+    from stable_baselines3.common.vec_env import DummyVecEnv, VecNormalize
+
+    binary = _policy_run()
+    venv = VecNormalize(DummyVecEnv([BoxEnv]), norm_obs=True, norm_reward=False, clip_obs=3.0)
+    rng = np.random.default_rng(2)
+    venv.obs_rms.mean = rng.normal(0, 1, 20)
+    venv.obs_rms.var = rng.uniform(0.1, 4.0, 20)
+    model = _model([256, 256, 256], venv)
+    stats = tmp_path / "vecnormalize.pkl"
+    venv.save(str(stats))
+    out = tmp_path / "actor.json"
+    export_sac_actor(model, out, obs_layout="test/1", vecnormalize=str(stats))
+    obs = rng.normal(0, 3, (1000, 20)).astype(np.float32)
+    expected, _ = model.predict(venv.normalize_obs(obs), deterministic=True)
+    got = _run(binary, out, obs)
+    assert np.max(np.abs(got - expected)) < 1e-5
+
+
+def test_policy_run_rejects_bad_line(tmp_path):
+    binary = _policy_run()
+    model = _model([8], BoxEnv(obs_size=3, low=(-1,), high=(1,)))
+    out = tmp_path / "actor.json"
+    export_sac_actor(model, out)
+    res = subprocess.run([str(binary), "--policy", str(out)], input="1 2 3\n1 2\n", capture_output=True, text=True)
+    assert res.returncode != 0 and "line 2" in res.stderr
+    res = subprocess.run([str(binary), "--policy", str(out)], input="1 x 3\n", capture_output=True, text=True)
+    assert res.returncode != 0 and "line 1" in res.stderr
+
+
+def test_export_refuses_gsde_hardtanh(tmp_path):
+    from stable_baselines3 import SAC
+
+    model = SAC("MlpPolicy", BoxEnv(), use_sde=True, device="cpu")  # clip_mean=2.0 -> Hardtanh
+    with pytest.raises(ValueError, match="Hardtanh"):
+        export_sac_actor(model, tmp_path / "a.json")

@@ -1,0 +1,151 @@
+"""Export the deterministic actor of an SB3 SAC model to the JSON format read by policy/ (C++).
+
+action = low + (tanh(mu(latent_pi(normalise(obs)))) + 1) / 2 * (high - low)
+
+SB3 pitfalls handled here:
+- net_arch: the hidden layers are read from the model's `latent_pi`, never assumed (SB3's default is
+  2x256, the paper's 3x256).
+- gSDE (use_sde=True): `mu` is still the deterministic mean; with clip_mean > 0 SB3 wraps it in a
+  Hardtanh, which the runtime does not implement, so that case is refused with a clear error.
+- VecNormalize statistics live outside the model zip: pass them (object or .pkl path) explicitly.
+
+CLI: python -m guidewire_nav.export_actor model.zip out.json [--vecnormalize stats.pkl]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import pickle
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import torch.nn as nn
+
+FORMAT = "guidewire-nav/actor/1"
+_ACTIVATIONS = {nn.ReLU: "relu", nn.Tanh: "tanh", nn.Identity: "identity"}
+
+
+def _git_commit() -> str | None:
+    try:
+        root = Path(__file__).resolve().parents[2]
+        out = subprocess.run(["git", "-C", str(root), "rev-parse", "HEAD"], capture_output=True, text=True, check=True)
+        return out.stdout.strip()
+    except Exception:  # noqa: BLE001 - no git is not an error for an export
+        return None
+
+
+def _linear(layer: nn.Linear, activation: str) -> dict:
+    w = layer.weight.detach().cpu().double().numpy()
+    return {
+        "shape": [int(w.shape[0]), int(w.shape[1])],
+        "weight": w.reshape(-1).tolist(),  # row-major (out, in)
+        "bias": layer.bias.detach().cpu().double().numpy().tolist(),
+        "activation": activation,
+    }
+
+
+def _actor_layers(actor) -> list[dict]:
+    layers: list[dict] = []
+    modules = list(actor.latent_pi)
+    i = 0
+    while i < len(modules):
+        m = modules[i]
+        if not isinstance(m, nn.Linear):
+            raise ValueError(f"export_actor: unsupported module {m!r} in latent_pi (expected Linear + activation)")
+        act = "identity"
+        if i + 1 < len(modules) and not isinstance(modules[i + 1], nn.Linear):
+            nxt = modules[i + 1]
+            if type(nxt) not in _ACTIVATIONS:
+                raise ValueError(f"export_actor: unsupported activation {nxt!r} (supported: ReLU, Tanh)")
+            act = _ACTIVATIONS[type(nxt)]
+            i += 1
+        layers.append(_linear(m, act))
+        i += 1
+    mu = actor.mu
+    if not isinstance(mu, nn.Linear):
+        raise ValueError(
+            f"export_actor: actor.mu is {mu!r}, not a plain Linear; with gSDE this is SB3's clip_mean Hardtanh, "
+            "which the runtime does not support: train with use_sde=False or policy_kwargs clip_mean=0"
+        )
+    layers.append(_linear(mu, "identity"))
+    return layers
+
+
+def _load_vecnormalize(vecnormalize):
+    if vecnormalize is None or hasattr(vecnormalize, "obs_rms"):
+        return vecnormalize
+    with open(vecnormalize, "rb") as f:
+        return pickle.load(f)
+
+
+def actor_to_dict(model, obs_layout: str, vecnormalize=None, training_settings: dict | None = None) -> dict:
+    """SB3 SAC model (+ optional VecNormalize or its .pkl path) -> actor JSON dictionary."""
+    policy = model.policy
+    actor = policy.actor
+    obs_space, act_space = model.observation_space, model.action_space
+    if len(obs_space.shape) != 1 or len(act_space.shape) != 1:
+        raise ValueError(f"export_actor: need flat Box spaces, got {obs_space} and {act_space}")
+    if not getattr(policy, "squash_output", True) and not actor.use_sde:
+        raise ValueError("export_actor: SAC actor without tanh squashing is not supported")
+    layers = _actor_layers(actor)
+    obs_size, action_size = int(obs_space.shape[0]), int(act_space.shape[0])
+    if layers[0]["shape"][1] != obs_size or layers[-1]["shape"][0] != action_size:
+        raise ValueError("export_actor: actor network sizes do not match the model spaces")
+
+    norm = None
+    vn = _load_vecnormalize(vecnormalize)
+    if vn is not None and getattr(vn, "norm_obs", True):
+        if isinstance(vn.obs_rms, dict):
+            raise ValueError("export_actor: dict observations in VecNormalize are not supported")
+        norm = {
+            "mean": np.asarray(vn.obs_rms.mean, dtype=np.float64).tolist(),
+            "var": np.asarray(vn.obs_rms.var, dtype=np.float64).tolist(),
+            "clip": float(vn.clip_obs),
+            "epsilon": float(vn.epsilon),
+        }
+        if len(norm["mean"]) != obs_size:
+            raise ValueError(f"export_actor: VecNormalize has {len(norm['mean'])} obs entries, model has {obs_size}")
+
+    return {
+        "format": FORMAT,
+        "obs_size": obs_size,
+        "action_size": action_size,
+        "obs_layout": obs_layout,
+        "obs_normalization": norm,
+        "layers": layers,
+        "output": {
+            "squash": "tanh",
+            "low": np.asarray(act_space.low, dtype=np.float64).tolist(),
+            "high": np.asarray(act_space.high, dtype=np.float64).tolist(),
+        },
+        "training_settings": training_settings or {},
+        "git_commit": _git_commit(),
+        "source": {"algorithm": "SB3 SAC", "use_sde": bool(actor.use_sde)},
+    }
+
+
+def export_sac_actor(model, path, obs_layout: str = "unspecified", vecnormalize=None, training_settings=None) -> dict:
+    """Write the deterministic actor of `model` to `path` (JSON); returns the dictionary written."""
+    d = actor_to_dict(model, obs_layout, vecnormalize, training_settings)
+    Path(path).write_text(json.dumps(d))
+    return d
+
+
+def main(argv=None) -> None:
+    from stable_baselines3 import SAC
+
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("model", help="SB3 SAC model .zip")
+    p.add_argument("out", help="output actor .json")
+    p.add_argument("--vecnormalize", help="VecNormalize statistics .pkl (not stored in the zip)")
+    p.add_argument("--obs-layout", default="unspecified", help="observation layout version string")
+    a = p.parse_args(argv)
+    model = SAC.load(a.model, device="cpu")
+    export_sac_actor(model, a.out, obs_layout=a.obs_layout, vecnormalize=a.vecnormalize)
+    print(f"wrote {a.out}")
+
+
+if __name__ == "__main__":
+    main()

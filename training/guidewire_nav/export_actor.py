@@ -129,7 +129,7 @@ def actor_to_dict(model, obs_layout: str, vecnormalize=None, training_settings: 
 def export_sac_actor(model, path, obs_layout: str = "unspecified", vecnormalize=None, training_settings=None) -> dict:
     """Write the deterministic actor of `model` to `path` (JSON); returns the dictionary written."""
     d = actor_to_dict(model, obs_layout, vecnormalize, training_settings)
-    Path(path).write_text(json.dumps(d))
+    Path(path).write_text(json.dumps(d, allow_nan=False))  # NaN weights: refuse, never write
     return d
 
 

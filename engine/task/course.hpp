@@ -1,0 +1,42 @@
+#pragma once
+// The route to one target, prepared once per (anatomy, target) so that resetting an episode
+// costs nothing: the path polyline, the geometry of every bifurcation met on the way, and
+// the sequence of goals (one intermediate target per bifurcation, paper 2.2 / design.md "Trees").
+#include <Eigen/Core>
+#include <vector>
+
+#include "centerline/graph/centerline_graph.hpp"
+#include "engine/task/polyline.hpp"
+#include "engine/task/task_config.hpp"
+
+namespace gw {
+
+struct CourseBifurcation {
+  int bifurcation_id = -1;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double arc = 0.0;              // arc length of the centre along the course polyline
+  int first_segment = 0;         // first course segment past the centre (the correct continuation)
+  Eigen::Vector3d correct_direction = Eigen::Vector3d::UnitX();  // c: unit, centre -> correct child
+  std::vector<int> wrong_branches;                 // graph branch ids of the wrong children
+  std::vector<Eigen::Vector3d> wrong_in_plane;     // w_p: unit wrong directions projected on the plane
+                                                   // normal to c (zero when w is parallel to c)
+};
+
+struct Course {
+  int target_id = 0;
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();
+  Polyline line;                                   // inlet -> target
+  std::vector<CourseBifurcation> bifurcations;     // in the order they are met
+  // Goals, in order: goal k < last belongs to bifurcation k and lies control_radius_mm past its
+  // centre in the correct branch (where the policy hands control back); the last goal is the
+  // target itself (so a single-bifurcation pattern has exactly one goal, as in the paper's training).
+  std::vector<double> goal_arc;
+  bool policy_always = true;                       // resolved ControlMode for this course
+};
+
+// Builds the course to `target_id`. `branch_lines[b]` is make_polyline(graph.branches[b].points).
+// Throws std::invalid_argument for an unknown target (plan_path's message) or a degenerate path.
+Course make_course(const CenterlineGraph& graph, const std::vector<Polyline>& branch_lines, int target_id,
+                   const TaskConfig& config);
+
+}  // namespace gw

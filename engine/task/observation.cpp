@@ -1,0 +1,40 @@
+#include "engine/task/observation.hpp"
+
+#include <algorithm>
+
+namespace gw {
+
+const std::array<const char*, kObservationSize>& observation_names() {
+  static const std::array<const char*, kObservationSize> names = {
+      "theta_t_1", "theta_t_2", "theta_t_3", "theta_prev_1", "theta_prev_2", "theta_prev_3",
+      "lambda_t",  "lambda_prev", "action",  "omega",        "speed"};
+  return names;
+}
+
+void observation_bounds(const TaskConfig& config, Observation& low, Observation& high) {
+  for (int i = 0; i < 2 * kThetaCount; ++i) {
+    low[i] = -1.0;
+    high[i] = 1.0;
+  }
+  low[obs_index::kLambda] = low[obs_index::kLambdaPrev] = 0.0;
+  high[obs_index::kLambda] = high[obs_index::kLambdaPrev] = config.max_lambda_ratio;
+  low[obs_index::kAction] = low[obs_index::kOmega] = -1.0;
+  high[obs_index::kAction] = high[obs_index::kOmega] = 1.0;
+  low[obs_index::kSpeed] = -config.max_abs_speed_ratio;
+  high[obs_index::kSpeed] = config.max_abs_speed_ratio;
+}
+
+double wrong_branch_alignment(const Eigen::Vector3d& curvature, const Eigen::Vector3d& correct_direction,
+                              const Eigen::Vector3d& wrong_in_plane, double rest_curvature) {
+  const Eigen::Vector3d kp = curvature - curvature.dot(correct_direction) * correct_direction;
+  const double scale = std::max(kp.norm(), 0.5 * rest_curvature);
+  if (!(scale > 0.0)) return 0.0;
+  return std::clamp(kp.dot(wrong_in_plane) / scale, -1.0, 1.0);
+}
+
+Eigen::Vector3d curvature_from_tangents(const Eigen::Vector3d& tip_tangent, const Eigen::Vector3d& back_tangent,
+                                        double arc_between) {
+  return (tip_tangent - back_tangent) / arc_between;
+}
+
+}  // namespace gw

@@ -1,0 +1,55 @@
+#pragma once
+// The observation of paper 2.2.3, Omega = {theta_t, theta_{t-n dt}, lambda_t, lambda_{t-n dt}, a_t, omega, s},
+// as a fixed-size vector. Layout "guidewire-nav/obs/1" (11 floats):
+//   [0..2]  theta_t      t_i . c_i, i = 1..3: unit wire tangent at 0, 2, 4 mm from the tip (t_i) against
+//                        the unit centerline tangent h = 4 mm ahead of that point's projection (c_i)
+//   [3..5]  theta_{t-n dt}  the same one env step earlier (n dt = frame_skip * dt)
+//   [6]     lambda_t / lambda_0      tip-to-goal distance along the centerline, over its value when the
+//                                    goal became current (1 at reset), clipped to [0, max_lambda_ratio]
+//   [7]     lambda_{t-n dt} / lambda_0
+//   [8]     a_t          the rotation action applied during the last env step, in [-1, 1] (0 when the
+//                        policy was not in control)
+//   [9]     omega = k_p . w_p in [-1, 1]: tip curvature vector and wrong-branch direction, both projected on
+//                        the plane normal to the correct branch; w_p is unit, k_p is divided by
+//                        max(|k_p|, kappa_rest/2) so omega is the cosine of the angle between them while the
+//                        tip is curved and fades to 0 when the wall straightens it. With several wrong
+//                        children, the largest (most dangerous) value.
+//   [10]    s = v . c / push speed: tip velocity over the last env step along the centerline tangent at the
+//                        tip, 1 = advancing at the push speed; clipped to +-max_abs_speed_ratio
+// Why 3 products t_i . c_i and not the figure's 3x3 t_i . c_j: the text defines theta_i = t_i . c_i
+// explicitly and calls theta an N-vector; the 6 off-diagonal products add mostly c_i . c_j-like terms,
+// i.e. the local curvature of the centerline itself, which is the anatomy-specific information the
+// shape-invariant observation is meant to leave out; and 11 inputs keep the actor small and fast.
+#include <Eigen/Core>
+#include <array>
+
+#include "engine/task/task_config.hpp"
+
+namespace gw {
+
+inline constexpr int kThetaCount = 3;
+inline constexpr int kObservationSize = 2 * kThetaCount + 5;
+inline constexpr const char* kObservationLayout = "guidewire-nav/obs/1";
+using Observation = std::array<double, kObservationSize>;
+
+namespace obs_index {
+inline constexpr int kTheta = 0, kThetaPrev = 3, kLambda = 6, kLambdaPrev = 7, kAction = 8, kOmega = 9, kSpeed = 10;
+}
+
+// Names of the entries, e.g. "theta_t_1", "lambda_prev", "omega".
+const std::array<const char*, kObservationSize>& observation_names();
+
+// Box bounds of every entry (clipping limits from `config`).
+void observation_bounds(const TaskConfig& config, Observation& low, Observation& high);
+
+// omega for one wrong branch: `curvature` (1/mm, pointing where the tip bends), `correct_direction`
+// (unit c), `wrong_in_plane` (unit w_p, or zero), `rest_curvature` (1/mm, the tip's). In [-1, 1].
+double wrong_branch_alignment(const Eigen::Vector3d& curvature, const Eigen::Vector3d& correct_direction,
+                              const Eigen::Vector3d& wrong_in_plane, double rest_curvature);
+
+// Mean curvature vector between two unit tangents of the wire, `tip_tangent` distal and `back_tangent`
+// `arc_between` mm proximal: dt/ds, pointing towards the side the tip bends to (a shape sensor gives this).
+Eigen::Vector3d curvature_from_tangents(const Eigen::Vector3d& tip_tangent, const Eigen::Vector3d& back_tangent,
+                                        double arc_between);
+
+}  // namespace gw

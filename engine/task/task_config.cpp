@@ -1,0 +1,52 @@
+#include "engine/task/task_config.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace gw {
+
+namespace {
+void require(bool ok, const char* field, const char* rule) {
+  if (!ok) throw std::invalid_argument(std::string("task config: ") + field + " must be " + rule);
+}
+}  // namespace
+
+void check_task_config(const TaskConfig& c) {
+  require(c.dt_s > 0 && std::isfinite(c.dt_s), "dt_s", "> 0");
+  require(c.frame_skip >= 1, "frame_skip", ">= 1");
+  require(c.push_mm_per_s > 0 && std::isfinite(c.push_mm_per_s), "push_mm_per_s", "> 0");
+  require(c.max_rotation_rad_per_s >= 0 && std::isfinite(c.max_rotation_rad_per_s), "max_rotation_rad_per_s", ">= 0");
+  require(c.initial_insertion_mm > 0, "initial_insertion_mm", "> 0");
+  require(c.max_start_tilt_rad >= 0 && c.max_start_tilt_rad < 1.5, "max_start_tilt_rad", "in [0, 1.5)");
+  require(c.tip_sample_spacing_mm > 0, "tip_sample_spacing_mm", "> 0");
+  require(c.lookahead_mm >= 0, "lookahead_mm", ">= 0");
+  require(c.branch_direction_mm > 0, "branch_direction_mm", "> 0");
+  require(c.max_abs_speed_ratio > 0, "max_abs_speed_ratio", "> 0");
+  require(c.max_lambda_ratio >= 1, "max_lambda_ratio", ">= 1");
+  require(c.success_radius_mm > 0, "success_radius_mm", "> 0");
+  require(c.wrong_branch_depth_mm >= 0, "wrong_branch_depth_mm", ">= 0");
+  require(c.control_radius_mm > 0, "control_radius_mm", "> 0");
+  require(c.max_steps >= 0, "max_steps", ">= 0 (0 = automatic)");
+  require(c.max_steps_path_factor >= 1, "max_steps_path_factor", ">= 1");
+  require(c.stuck_steps >= 1, "stuck_steps", ">= 1");
+  require(c.stuck_progress_mm >= 0, "stuck_progress_mm", ">= 0");
+  require(c.wire_reserve_mm >= 0, "wire_reserve_mm", ">= 0");
+}
+
+ControlMode parse_control_mode(const std::string& text) {
+  if (text == "always") return ControlMode::kAlways;
+  if (text == "near_bifurcation") return ControlMode::kNearBifurcation;
+  if (text == "auto") return ControlMode::kAuto;
+  throw std::invalid_argument("control mode '" + text + "' is not one of always, near_bifurcation, auto");
+}
+
+const char* control_mode_name(ControlMode mode) {
+  switch (mode) {
+    case ControlMode::kAlways: return "always";
+    case ControlMode::kNearBifurcation: return "near_bifurcation";
+    case ControlMode::kAuto: return "auto";
+  }
+  return "auto";
+}
+
+}  // namespace gw

@@ -1,0 +1,56 @@
+#pragma once
+// Every constant of the navigation task (paper section 2.2) in one place, with the reason for
+// its value. The task model (NavigationTask) holds one; episodes never change it.
+#include <string>
+
+namespace gw {
+
+// When the policy's action is applied (design.md, "Trees").
+enum class ControlMode {
+  kAlways,             // every env step (training on single bifurcation patterns, paper 2.2.2)
+  kNearBifurcation,    // only while the tip is within control_radius_mm of a bifurcation centre
+  kAuto,               // kAlways when the path has at most one bifurcation, else kNearBifurcation
+};
+
+struct TaskConfig {
+  // --- Driving the wire (constant push + rotation from the action) ---
+  double dt_s = 0.01;                    // physics time step handed to make_wire_model
+  int frame_skip = 4;                    // physics steps per env step: one env step = 0.04 s
+  double push_mm_per_s = 10.0;           // constant insertion: 0.4 mm per env step, so a ~100-150 mm
+                                         // training path takes ~250-400 env steps ("a few hundred")
+  double max_rotation_rad_per_s = 6.283185307179586;  // action +-1 = one proximal turn per second:
+                                         // a half turn (the worst re-orientation) costs 0.5 s = 5 mm of
+                                         // advance, well inside the 20 mm control zone
+  double initial_insertion_mm = 2.0;     // tip this far past the inlet at reset
+  double max_start_tilt_rad = 0.1745329251994330;  // random start orientation: up to 10 deg off the
+                                         // inlet direction (random azimuth), paper 2.2.2
+  // --- Observation (layout in observation.hpp) ---
+  double tip_sample_spacing_mm = 2.0;    // t_1..t_3 at 0, 2, 4 mm from the tip: spans the 6 mm curved
+                                         // tip with several "grating" samples (paper: robustness to
+                                         // shape-reconstruction noise)
+  double lookahead_mm = 4.0;             // h: centerline tangent c_i taken h ahead of each sample
+  double branch_direction_mm = 6.0;      // c and w (omega) = directions from a bifurcation centre to
+                                         // the points this far along the correct / wrong child
+  double max_abs_speed_ratio = 5.0;      // s = v.c / push is clipped to +-this (bounded obs space)
+  double max_lambda_ratio = 4.0;         // lambda_t / lambda_0 is clipped to [0, this]
+  // --- Episode end ---
+  double success_radius_mm = 4.0;        // tip within this distance of the target = success
+  double wrong_branch_depth_mm = 4.0;    // failure once the tip is this far along a wrong child and
+                                         // closer to it than to the correct continuation
+  double control_radius_mm = 20.0;       // paper: the policy acts within 20 mm of a bifurcation centre
+  ControlMode control_mode = ControlMode::kAuto;
+  int max_steps = 0;                     // step limit; 0 = auto: path_length * factor / advance per step
+  double max_steps_path_factor = 2.5;    //   (+ 50), i.e. 2.5x the steps a wire that never buckles needs
+  int stuck_steps = 60;                  // truncate when the tip's progress along the path has not grown
+  double stuck_progress_mm = 1.0;        //   by stuck_progress_mm in stuck_steps env steps (24 mm pushed)
+  double wire_reserve_mm = 5.0;          // truncate when less than this much wire is left outside
+};
+
+// Throws std::invalid_argument naming the first field out of range.
+void check_task_config(const TaskConfig& config);
+
+// "always" | "near_bifurcation" | "auto"; throws std::invalid_argument for anything else.
+ControlMode parse_control_mode(const std::string& text);
+const char* control_mode_name(ControlMode mode);
+
+}  // namespace gw

@@ -1,0 +1,147 @@
+// Geometry of the navigation task on hand-made centerlines: polyline queries, courses
+// (bifurcation directions, goals), omega, reward (Eq. 3), observation layout.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "engine/task/course.hpp"
+#include "engine/task/observation.hpp"
+#include "engine/task/polyline.hpp"
+#include "engine/task/reward.hpp"
+#include "tests/task/hand_made_graphs.hpp"
+
+using Approx = Catch::Detail::Approx;
+using Eigen::Vector3d;
+
+TEST_CASE("polyline: arc length, projection, point and tangent", "[task]") {
+  const gw::Polyline line = gw::make_polyline({{0, 0, 0}, {10, 0, 0}, {10, 0, 0}, {10, 10, 0}});
+  REQUIRE(line.points.size() == 3);  // duplicate dropped
+  CHECK(line.length == Approx(20.0));
+  const gw::PolylineProjection p = gw::project_onto_polyline(line, {4, 3, 0});
+  CHECK(p.arc == Approx(4.0));
+  CHECK(p.distance == Approx(3.0));
+  CHECK(p.segment == 0);
+  const gw::PolylineProjection q = gw::project_onto_polyline(line, {12, 7, 0});
+  CHECK(q.arc == Approx(17.0));
+  CHECK(q.distance == Approx(2.0));
+  CHECK(gw::project_onto_polyline(line, {-5, 0, 0}).arc == Approx(0.0));    // clamped
+  CHECK(gw::project_onto_polyline(line, {10, 30, 0}).arc == Approx(20.0));  // clamped
+  CHECK((gw::polyline_point(line, 15.0) - Vector3d(10, 5, 0)).norm() < 1e-12);
+  CHECK((gw::polyline_tangent(line, 0.0) - Vector3d(1, 0, 0)).norm() < 1e-12);
+  CHECK((gw::polyline_tangent(line, 20.0) - Vector3d(0, 1, 0)).norm() < 1e-12);
+  // Between point tangents: interpolated, unit.
+  CHECK(gw::polyline_tangent(line, 5.0).norm() == Approx(1.0));
+  CHECK(gw::polyline_tangent(line, 5.0).y() > 0.0);
+  // At the corner the central-difference tangent is the bisector.
+  CHECK((gw::polyline_tangent(line, 10.0) - Vector3d(1, 1, 0).normalized()).norm() < 1e-12);
+  // A restricted search ignores the first segment.
+  CHECK(gw::project_onto_polyline(line, {4, 3, 0}, 1).arc == Approx(13.0));
+}
+
+TEST_CASE("polyline: bad input is refused", "[task]") {
+  CHECK_THROWS_WITH(gw::make_polyline({{1, 1, 1}}), Catch::Contains("two distinct points"));
+  CHECK_THROWS_WITH(gw::make_polyline({{1, 1, 1}, {1, 1, 1}}), Catch::Contains("two distinct points"));
+  CHECK_THROWS_WITH(gw::make_polyline({{0, 0, 0}, {NAN, 0, 0}}), Catch::Contains("non-finite"));
+}
+
+TEST_CASE("course through a Y bifurcation: directions, goals, control mode", "[task]") {
+  const gw::CenterlineGraph g = gwtest::y_graph();
+  std::vector<gw::Polyline> lines;
+  for (const auto& b : g.branches) lines.push_back(gw::make_polyline(b.points));
+  gw::TaskConfig config;
+  // Target numbering: both leaves have the same length, tie broken by x: (-) first.
+  const gw::Course c1 = gw::make_course(g, lines, 1, config);
+  const gw::Course c2 = gw::make_course(g, lines, 2, config);
+  REQUIRE(c1.bifurcations.size() == 1);
+  CHECK(c1.bifurcations[0].arc == Approx(40.0));
+  CHECK(c1.line.length == Approx(40.0 + 30.0 * std::sqrt(2.0)).epsilon(1e-9));
+  CHECK(c1.goal_arc.size() == 1);  // single bifurcation: the goal is the target itself
+  CHECK(c1.goal_arc[0] == Approx(c1.line.length));
+  CHECK(c1.policy_always);
+  // Correct direction of target 1 is the (-x, +y) child; the wrong one projected on the plane
+  // normal to it points along +x+y rotated: w_p is orthogonal to c and unit.
+  const auto& b1 = c1.bifurcations[0];
+  CHECK((b1.correct_direction - Vector3d(-1, 1, 0).normalized()).norm() < 1e-9);
+  REQUIRE(b1.wrong_in_plane.size() == 1);
+  CHECK(std::abs(b1.wrong_in_plane[0].dot(b1.correct_direction)) < 1e-12);
+  CHECK(b1.wrong_in_plane[0].norm() == Approx(1.0));
+  CHECK((b1.wrong_in_plane[0] - Vector3d(1, 1, 0).normalized()).norm() < 1e-9);
+  CHECK((c2.bifurcations[0].correct_direction - Vector3d(1, 1, 0).normalized()).norm() < 1e-9);
+  CHECK_THROWS_WITH(gw::make_course(g, lines, 3, config), Catch::Contains("valid targets are 1..2"));
+}
+
+TEST_CASE("course through a tree: one intermediate goal per bifurcation", "[task]") {
+  const gw::CenterlineGraph g = gwtest::two_level_tree();
+  std::vector<gw::Polyline> lines;
+  for (const auto& b : g.branches) lines.push_back(gw::make_polyline(b.points));
+  gw::TaskConfig config;
+  for (const auto& t : g.targets) {
+    const gw::Course c = gw::make_course(g, lines, t.id, config);
+    CHECK(c.goal_arc.size() == c.bifurcations.size());
+    CHECK(c.goal_arc.back() == Approx(c.line.length));
+    if (c.bifurcations.size() == 2) {
+      CHECK_FALSE(c.policy_always);  // auto: trees hand control only near bifurcations
+      CHECK(c.goal_arc[0] == Approx(c.bifurcations[0].arc + config.control_radius_mm));
+    }
+  }
+  config.control_mode = gw::ControlMode::kAlways;
+  CHECK(gw::make_course(g, lines, g.targets.back().id, config).policy_always);
+}
+
+TEST_CASE("omega: cosine of tip bend vs wrong branch in the plane normal to the correct branch", "[task]") {
+  const Vector3d c(0, 0, 1), wp(1, 0, 0);
+  const double kappa = 0.2;
+  CHECK(gw::wrong_branch_alignment({0.2, 0, 0}, c, wp, kappa) == Approx(1.0));
+  CHECK(gw::wrong_branch_alignment({-0.2, 0, 0}, c, wp, kappa) == Approx(-1.0));
+  CHECK(gw::wrong_branch_alignment({0, 0.2, 0.5}, c, wp, kappa) == Approx(0.0).margin(1e-12));
+  CHECK(gw::wrong_branch_alignment({0.1, 0.1, 0.3}, c, wp, kappa) == Approx(std::sqrt(0.5)));
+  // A tip straightened to a quarter of its rest curvature counts only half.
+  CHECK(gw::wrong_branch_alignment({0.05, 0, 0}, c, wp, kappa) == Approx(0.5));
+  CHECK(gw::wrong_branch_alignment({0, 0, 0}, c, wp, kappa) == Approx(0.0));
+  CHECK(gw::wrong_branch_alignment({0.2, 0, 0}, c, Vector3d::Zero(), kappa) == Approx(0.0));
+}
+
+TEST_CASE("curvature from two tangents of a circular arc", "[task]") {
+  // Arc of radius 5 (curvature 0.2) in the xy plane: tangent at arc s is (cos(s/5), sin(s/5), 0),
+  // the curvature vector dt/ds points along (-sin, cos), towards the centre.
+  const double r = 5.0, s0 = 1.0, ds = 4.0;
+  const Vector3d back(std::cos(s0 / r), std::sin(s0 / r), 0), tip(std::cos((s0 + ds) / r), std::sin((s0 + ds) / r), 0);
+  const Vector3d k = gw::curvature_from_tangents(tip, back, ds);
+  const double mid = (s0 + ds / 2) / r;
+  CHECK(k.normalized().dot(Vector3d(-std::sin(mid), std::cos(mid), 0)) == Approx(1.0).epsilon(1e-9));
+  CHECK(k.norm() == Approx(2.0 * std::sin(ds / (2 * r)) / ds));  // chord of the tangent circle
+}
+
+TEST_CASE("reward is exactly paper Eq. 3", "[task]") {
+  auto eq3 = [](double w, double l, double a) {
+    return 2.0 / (1.0 + std::exp(5.0 * (w - 0.1))) - 1.0 + 0.5 * (1.0 - l) - 0.2 * std::abs(a);
+  };
+  for (double w : {-1.0, -0.3, 0.0, 0.1, 0.7, 1.0})
+    for (double l : {0.0, 0.4, 1.0, 1.7})
+      for (double a : {-1.0, -0.2, 0.0, 0.5, 1.0}) CHECK(gw::navigation_reward(w, l, a) == eq3(w, l, a));
+  CHECK(gw::navigation_reward(0.1, 1.0, 0.0) == Approx(0.0).margin(1e-15));  // sigmoid centre
+  CHECK(gw::navigation_reward(-1.0, 0.0, 0.0) == Approx(2.0 / (1.0 + std::exp(-5.5)) - 0.5));
+}
+
+TEST_CASE("observation layout is fixed and bounded", "[task]") {
+  CHECK(gw::kObservationSize == 11);
+  CHECK(std::string(gw::kObservationLayout) == "guidewire-nav/obs/1");
+  CHECK(std::string(gw::observation_names()[gw::obs_index::kOmega]) == "omega");
+  CHECK(std::string(gw::observation_names()[gw::obs_index::kSpeed]) == "speed");
+  gw::TaskConfig config;
+  gw::Observation lo, hi;
+  gw::observation_bounds(config, lo, hi);
+  for (int i = 0; i < gw::kObservationSize; ++i) CHECK(lo[i] < hi[i]);
+  CHECK(hi[gw::obs_index::kLambda] == config.max_lambda_ratio);
+}
+
+TEST_CASE("task config is checked", "[task]") {
+  gw::TaskConfig c;
+  CHECK_NOTHROW(gw::check_task_config(c));
+  c.frame_skip = 0;
+  CHECK_THROWS_WITH(gw::check_task_config(c), Catch::Contains("frame_skip"));
+  c = {};
+  c.push_mm_per_s = NAN;
+  CHECK_THROWS_WITH(gw::check_task_config(c), Catch::Contains("push_mm_per_s"));
+  CHECK(gw::parse_control_mode("near_bifurcation") == gw::ControlMode::kNearBifurcation);
+  CHECK_THROWS_WITH(gw::parse_control_mode("sometimes"), Catch::Contains("sometimes"));
+}

@@ -1,0 +1,60 @@
+#include "centerline/extract/cross_section.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace gw {
+
+CrossSection fit_cross_section(const VesselWall& wall, const Eigen::Vector3d& p, const Eigen::Vector3d& tangent,
+                               double max_length, int rays) {
+  CrossSection out;
+  out.centre = p;
+  const Eigen::Vector3d t = tangent.normalized();
+  const Eigen::Vector3d u = t.unitOrthogonal(), v = t.cross(u);
+  std::vector<Eigen::Vector2d> hits;
+  double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
+  for (int k = 0; k < rays; ++k) {
+    const double a = 2.0 * M_PI * k / rays;
+    const Eigen::Vector2d dir(std::cos(a), std::sin(a));
+    const double d = wall.ray_hit(p, dir.x() * u + dir.y() * v);
+    if (!(d <= max_length)) {
+      out.radius = wall.distance(p);
+      return out;
+    }
+    shortest = std::min(shortest, d);
+    longest = std::max(longest, d);
+    hits.push_back(d * dir);
+  }
+  // Kasa circle fit: x^2 + y^2 + D x + E y + F = 0 in least squares, through the 3x3
+  // normal equations (fixed size: no dynamic-size Eigen kernels needed).
+  Eigen::Matrix3d AtA = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d Atb = Eigen::Vector3d::Zero();
+  for (const auto& h : hits) {
+    const Eigen::Vector3d row(h.x(), h.y(), 1.0);
+    AtA += row * row.transpose();
+    Atb -= row * h.squaredNorm();
+  }
+  const Eigen::Vector3d s = AtA.ldlt().solve(Atb);
+  const Eigen::Vector2d c(-0.5 * s(0), -0.5 * s(1));
+  const double r2 = c.squaredNorm() - s(2);
+  if (!(r2 > 0)) {
+    out.radius = wall.distance(p);
+    return out;
+  }
+  const double r = std::sqrt(r2);
+  double residual = 0.0;
+  for (const auto& h : hits) residual = std::max(residual, std::abs((h - c).norm() - r));
+  out.centre = p + c.x() * u + c.y() * v;
+  out.radius = r;
+  out.tube = longest < 2.5 * shortest && residual < 0.15 * r;
+  if (!out.tube) {
+    out.centre = p;
+    out.radius = wall.distance(p);
+  }
+  return out;
+}
+
+}  // namespace gw

@@ -1,0 +1,25 @@
+#pragma once
+// The vessel's cross-section through a point, in the plane normal to the centerline:
+// rays cast in that plane hit the wall; a circle fitted to the hits gives the true
+// centre (the skeleton sits off-axis) and the radius.
+#include <Eigen/Core>
+
+#include "centerline/extract/vessel_wall.hpp"
+
+namespace gw {
+
+struct CrossSection {
+  bool tube = false;  // the hits look like one roughly circular lumen (false near
+                      // bifurcations and caps, where the plane cuts more than a tube)
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // fitted centre, in the plane
+  double radius = 0.0;                               // fitted radius
+};
+
+// Casts `rays` rays from `p` in the plane normal to the unit `tangent`, up to
+// `max_length` (about 3 radii), and fits a circle to the hits (Kasa fit). `tube` is
+// false when a ray misses, the lumen is elongated (longest/shortest hit > 2.5), or the
+// hits stray more than 15% of the radius from the circle.
+CrossSection fit_cross_section(const VesselWall& wall, const Eigen::Vector3d& p, const Eigen::Vector3d& tangent,
+                               double max_length, int rays = 24);
+
+}  // namespace gw

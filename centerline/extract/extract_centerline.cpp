@@ -1,0 +1,170 @@
+#include "centerline/extract/extract_centerline.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <queue>
+#include <stdexcept>
+#include <tuple>
+
+#include "centerline/extract/mcf_skeleton.hpp"
+#include "centerline/extract/prepare_surface.hpp"
+#include "centerline/extract/refine_branch.hpp"
+#include "centerline/extract/skeleton_tree.hpp"
+#include "centerline/extract/vessel_wall.hpp"
+
+namespace gw {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+// Typical radius of a chain near its end `at_start`: median over the half next to it.
+double end_radius(const RefinedBranch& b, bool at_start) {
+  const size_t half = std::max<size_t>(1, b.radii.size() / 2);
+  std::vector<double> r;
+  if (at_start) r.assign(b.radii.begin(), b.radii.begin() + static_cast<long>(half));
+  else r.assign(b.radii.end() - static_cast<long>(half), b.radii.end());
+  return median(r);
+}
+
+}  // namespace
+
+CenterlineGraph extract_centerline(const TriangleMesh& mesh, const CenterlineOptions& opt, CenterlineStats* stats_out) {
+  if (!(opt.spacing > 0) || !(opt.edges_per_radius > 0))
+    throw std::invalid_argument("centerline options: spacing and edges_per_radius must be positive");
+  CenterlineStats stats;
+  stats.input_faces = mesh.F.rows();
+  auto t0 = std::chrono::steady_clock::now();
+
+  // 1-2. A closed surface, remeshed to a size tied to the vessel radius.
+  const ClosedSurface closed = close_surface(mesh);
+  stats.capped_holes = static_cast<int>(closed.caps.size());
+  stats.dropped_components = closed.dropped_components;
+  stats.mean_radius = closed.mean_radius();
+  if (closed.dropped_components > 0)
+    stats.warnings.push_back("dropped " + std::to_string(closed.dropped_components) +
+                             " disconnected piece(s); kept the largest surface");
+  if (!closed.caps.empty())
+    stats.warnings.push_back("capped " + std::to_string(closed.caps.size()) + " open end(s)");
+  const TriangleMesh coarse = remesh_surface(closed.mesh, stats.mean_radius / opt.edges_per_radius);
+  stats.skeleton_faces = coarse.F.rows();
+  stats.seconds_prepare = seconds_since(t0);
+
+  // 3. MCF skeleton.
+  t0 = std::chrono::steady_clock::now();
+  const RawSkeleton raw = mcf_skeleton(coarse);
+  stats.seconds_skeleton = seconds_since(t0);
+
+  // 4. Clean tree of chains; the wall of the (un-remeshed) closed input is the reference.
+  t0 = std::chrono::steady_clock::now();
+  const VesselWall wall(closed.mesh);
+  std::vector<Eigen::Vector3d> caps;
+  for (const auto& c : closed.caps) caps.push_back(c.centre);
+  SkeletonCleanup cleanup;
+  cleanup.spur_factor = opt.spur_factor;
+  cleanup.merge_factor = opt.merge_factor;
+  const SkeletonTree tree =
+      clean_skeleton(raw, [&](const Eigen::Vector3d& p) { return wall.distance(p); }, caps, cleanup);
+  if (tree.chains.empty()) throw std::runtime_error("the skeleton has no branch");
+  const std::vector<int> degree = tree.degree();
+
+  // 6 (before 5: refinement does not depend on direction). Terminal ends are free.
+  BranchRefinement refinement;
+  refinement.spacing = opt.spacing;
+  refinement.smoothing_iterations = opt.smoothing_iterations;
+  std::vector<RefinedBranch> refined;
+  for (const auto& c : tree.chains)
+    refined.push_back(refine_branch(c.points, degree[c.a] == 1, degree[c.b] == 1, wall, refinement));
+
+  // 5. Inlet: the terminal nearest the given point, else the one on the widest branch
+  // (ties: lowest x, y, z, so the choice is deterministic).
+  int inlet_node = -1;
+  std::tuple<double, double, double, double> best{0, 0, 0, 0};
+  for (size_t i = 0; i < tree.chains.size(); ++i) {
+    const auto& c = tree.chains[i];
+    for (bool at_start : {true, false}) {
+      const int node = at_start ? c.a : c.b;
+      if (degree[node] != 1) continue;
+      const Eigen::Vector3d end = at_start ? refined[i].points.front() : refined[i].points.back();
+      const double score = opt.inlet ? -(end - *opt.inlet).norm() : end_radius(refined[i], at_start);
+      const std::tuple<double, double, double, double> key{score, -end.x(), -end.y(), -end.z()};
+      if (inlet_node < 0 || key > best) inlet_node = node, best = key;
+    }
+  }
+  if (inlet_node < 0) throw std::runtime_error("the skeleton has no terminal to enter from");
+
+  // Walk the tree from the inlet so every branch runs distally.
+  CenterlineGraph g;
+  std::vector<int> arriving(tree.nodes.size(), -1);
+  std::vector<char> visited(tree.nodes.size(), 0), used(tree.chains.size(), 0);
+  std::queue<int> queue;
+  queue.push(inlet_node);
+  visited[inlet_node] = 1;
+  std::vector<int> bifurcation_of(tree.nodes.size(), -1);
+  while (!queue.empty()) {
+    const int v = queue.front();
+    queue.pop();
+    for (size_t i = 0; i < tree.chains.size(); ++i) {
+      const auto& c = tree.chains[i];
+      if (used[i] || (c.a != v && c.b != v)) continue;
+      used[i] = 1;
+      const int far = c.a == v ? c.b : c.a;
+      if (visited[far]) continue;
+      visited[far] = 1;
+      CenterlineBranch branch;
+      branch.id = static_cast<int>(g.branches.size());
+      branch.parent = arriving[v];
+      branch.points = refined[i].points;
+      branch.radii = refined[i].radii;
+      if (c.a != v) {
+        std::reverse(branch.points.begin(), branch.points.end());
+        std::reverse(branch.radii.begin(), branch.radii.end());
+      }
+      if (branch.parent >= 0) {
+        if (bifurcation_of[v] < 0) {
+          Bifurcation b;
+          b.id = static_cast<int>(g.bifurcations.size());
+          b.position = tree.nodes[v];
+          b.parent = branch.parent;
+          bifurcation_of[v] = b.id;
+          g.bifurcations.push_back(b);
+        }
+        g.bifurcations[bifurcation_of[v]].children.push_back(branch.id);
+      }
+      arriving[far] = branch.id;
+      g.branches.push_back(std::move(branch));
+      queue.push(far);
+    }
+  }
+  const CenterlineBranch& root = g.branches.front();
+  g.inlet.id = 0;
+  g.inlet.position = root.points.front();
+  g.inlet.branch = 0;
+  g.inlet.radius = root.radii.front();
+  // Direction into the vessel: over about two radii of the root branch.
+  const double ahead = 2.0 * std::max(root.radii.front(), opt.spacing);
+  Eigen::Vector3d towards = root.points.back();
+  double run = 0.0;
+  for (size_t i = 1; i < root.points.size(); ++i) {
+    run += (root.points[i] - root.points[i - 1]).norm();
+    if (run >= ahead) {
+      towards = root.points[i];
+      break;
+    }
+  }
+  if ((towards - root.points.front()).norm() > 0) g.inlet_direction = (towards - root.points.front()).normalized();
+  number_targets(g);
+  stats.seconds_graph = seconds_since(t0);
+  if (stats_out) *stats_out = stats;
+  return g;
+}
+
+}  // namespace gw

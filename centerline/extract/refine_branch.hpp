@@ -1,0 +1,31 @@
+#pragma once
+// From a rough skeleton chain to a centred, smooth, evenly sampled branch with radii.
+#include <Eigen/Core>
+#include <vector>
+
+#include "centerline/extract/vessel_wall.hpp"
+
+namespace gw {
+
+struct BranchRefinement {
+  double spacing = 0.5;          // output point spacing (mm)
+  int recentre_passes = 2;       // cross-section re-centring passes
+  int smoothing_iterations = 4;  // Laplacian passes after re-centring
+  int rays = 24;                 // rays per cross-section
+};
+
+struct RefinedBranch {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<double> radii;
+};
+
+// `chain` runs from its first to its last point. Interior points are moved onto the
+// centre of their cross-section wherever it is a clean tube (not near bifurcations or
+// caps). A free end (a terminal: inlet or target) is then extended straight along the
+// branch to the wall, since the skeleton stops about a radius short of an outlet; a
+// bound end (a bifurcation centre) stays exactly where it is. Radii are the fitted
+// cross-section radii, interpolated along the branch where the section is not a tube.
+RefinedBranch refine_branch(const std::vector<Eigen::Vector3d>& chain, bool free_start, bool free_end,
+                            const VesselWall& wall, const BranchRefinement& options = {});
+
+}  // namespace gw

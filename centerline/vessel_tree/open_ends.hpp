@@ -1,0 +1,15 @@
+#pragma once
+// Open the inlet and outlets of a capped vessel mesh, as segmented clinical meshes are.
+#include <vector>
+
+#include "centerline/vessel_tree/tree_geometry.hpp"
+#include "engine/mesh/triangle_mesh.hpp"
+
+namespace gw {
+
+// Removes every face whose three vertices lie on one cap disc (within `tolerance` mm of
+// its plane, inside its radius), then unreferenced vertices. Throws MeshError if a cap
+// leaves no hole or the result is not one boundary loop per cap.
+TriangleMesh remove_end_caps(const TriangleMesh& mesh, const std::vector<EndCap>& caps, double tolerance = 1e-3);
+
+}  // namespace gw

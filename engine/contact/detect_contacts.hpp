@@ -1,0 +1,43 @@
+#pragma once
+// Stage "detect": which parts of the wire are within reach of the vessel wall.
+// Contact points are the free nodes and the element midpoints (so a 2 mm chord cannot cut through a
+// bend of the wall between two nodes); each becomes a unilateral constraint along the wall's inward
+// direction with two friction directions. Broad phase: FCL sphere-vs-BVH queries, cached per point
+// (WireState::wall_cache) and redone only when the point has moved more than the cache slack.
+#include <Eigen/Core>
+#include <vector>
+
+#include "engine/scene/vessel_scene.hpp"
+#include "engine/wire/wire_state.hpp"
+
+namespace gw {
+
+struct ContactPoint {
+  int point = 0;              // contact point id: node i -> i, midpoint of element e -> nodes + e
+  int node_a = 0, node_b = -1;  // nodes carrying it (node_b = -1 for a node point)
+  double wa = 1, wb = 0;      // interpolation weights
+  Eigen::Vector3d n, t1, t2;  // n: into the lumen; t1, t2: tangent plane
+  double gap = 0;             // wall clearance of the wire surface (signed distance - radius) [mm]
+};
+
+// Number of contact points (nodes + element midpoints) a model has.
+int contact_point_count(const WireModel& model);
+
+// Position of contact point `point` given node positions.
+Eigen::Vector3d contact_point_position(const WireModel& model, const std::vector<Eigen::Vector3d>& x, int point);
+
+// True when `point` is inserted far enough to be tested against the wall (past inlet_clearance_mm).
+bool contact_point_active(const WireModel& model, const WireState& state, int point);
+
+// Signed distance (> 0 inside) of `p` (contact point `point`) to the wall, using and refreshing the
+// state's cache. Exact whenever |result| < reach = radius + contact margin; otherwise a value beyond
+// reach on the correct side.
+WallDistance cached_wall_distance(const WireModel& model, const VesselScene& scene, WireState& state, int point,
+                                  const Eigen::Vector3d& p);
+
+// Contacts of the wire at node positions `x` (the predicted positions of this step): every active
+// point whose surface clearance is below params.contact_margin_mm. Clears and fills `out`.
+void detect_contacts(const WireModel& model, const VesselScene& scene, WireState& state,
+                     const std::vector<Eigen::Vector3d>& x, std::vector<ContactPoint>& out);
+
+}  // namespace gw

@@ -1,0 +1,144 @@
+#include "engine/scene/vessel_scene.hpp"
+
+#include <cmath>
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/collision_object.h>
+#include <fcl/narrowphase/distance.h>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "engine/scene/closest_point_triangle.hpp"
+
+namespace gw {
+
+struct VesselSceneBvh {
+  std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> model;
+  std::unique_ptr<fcl::CollisionObjectd> object;
+};
+
+VesselScene make_vessel_scene(const TriangleMesh& mesh) {
+  const int nv = static_cast<int>(mesh.V.rows());
+  const int nf = static_cast<int>(mesh.F.rows());
+  if (nv == 0 || nf == 0) throw std::runtime_error("make_vessel_scene: the vessel mesh is empty");
+  if (!mesh.V.allFinite()) throw std::runtime_error("make_vessel_scene: the vessel mesh has non-finite vertices");
+  if (mesh.F.minCoeff() < 0 || mesh.F.maxCoeff() >= nv)
+    throw std::runtime_error("make_vessel_scene: a triangle indexes a vertex that does not exist");
+  VesselScene s;
+  s.mesh = mesh;
+  s.face_normals.resize(nf, 3);
+  s.face_centres.resize(nf, 3);
+  s.face_radii.resize(nf);
+  double volume = 0;
+  std::vector<fcl::Vector3d> verts(nv);
+  std::vector<fcl::Triangle> tris(nf);
+  for (int i = 0; i < nv; ++i) verts[i] = mesh.V.row(i).transpose();
+  for (int f = 0; f < nf; ++f) {
+    const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)), c = mesh.V.row(mesh.F(f, 2));
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    const double len = n.norm();
+    s.face_normals.row(f) = len > 0 ? Eigen::RowVector3d((n / len).transpose()) : Eigen::RowVector3d::Zero();
+    const Eigen::Vector3d centre = (a + b + c) / 3.0;
+    s.face_centres.row(f) = centre.transpose();
+    s.face_radii(f) = std::max({(a - centre).norm(), (b - centre).norm(), (c - centre).norm()});
+    volume += a.dot(b.cross(c)) / 6.0;
+    tris[f] = fcl::Triangle(mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2));
+  }
+  if (!(volume > 0))
+    throw std::runtime_error("make_vessel_scene: the vessel mesh has signed volume " + std::to_string(volume) +
+                             " <= 0 (not closed or oriented inwards); the lumen must be the inside");
+  auto bvh = std::make_shared<VesselSceneBvh>();
+  bvh->model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+  bvh->model->beginModel(nf, nv);
+  bvh->model->addSubModel(verts, tris);
+  bvh->model->endModel();
+  bvh->object = std::make_unique<fcl::CollisionObjectd>(bvh->model, fcl::Transform3d::Identity());
+  s.bvh = bvh;
+  return s;
+}
+
+void triangles_within(const VesselScene& scene, const Eigen::Vector3d& p, double radius, std::vector<int>& out) {
+  out.clear();
+  auto sphere = std::make_shared<fcl::Sphered>(radius);
+  fcl::Transform3d tf = fcl::Transform3d::Identity();
+  tf.translation() = p;
+  fcl::CollisionObjectd obj(sphere, tf);
+  fcl::CollisionRequestd req(static_cast<std::size_t>(scene.mesh.F.rows()), false);
+  fcl::CollisionResultd res;
+  fcl::collide(scene.bvh->object.get(), &obj, req, res);
+  for (std::size_t i = 0; i < res.numContacts(); ++i) out.push_back(res.getContact(i).b1);
+}
+
+double nearest_triangle(const VesselScene& scene, const Eigen::Vector3d& p, int& triangle) {
+  // A tiny sphere stands in for the point (FCL has no point shape).
+  auto sphere = std::make_shared<fcl::Sphered>(1e-9);
+  fcl::Transform3d tf = fcl::Transform3d::Identity();
+  tf.translation() = p;
+  fcl::CollisionObjectd obj(sphere, tf);
+  fcl::DistanceRequestd req(true);
+  fcl::DistanceResultd res;
+  fcl::distance(scene.bvh->object.get(), &obj, req, res);
+  triangle = res.b1;
+  return std::max(0.0, res.min_distance);
+}
+
+WallDistance wall_distance_among(const VesselScene& scene, const Eigen::Vector3d& p, const std::vector<int>& triangles,
+                                 double cutoff) {
+  WallDistance best;
+  best.signed_distance = std::numeric_limits<double>::infinity();
+  double best_d2 = cutoff * cutoff;
+  double best_cos = -1;
+  Eigen::Vector3d best_diff = Eigen::Vector3d::Zero();
+  const auto& V = scene.mesh.V;
+  const auto& F = scene.mesh.F;
+  for (int f : triangles) {
+    // Early out: the triangle lies inside its bounding sphere.
+    const double dc = (p - scene.face_centres.row(f).transpose()).norm() - scene.face_radii(f);
+    if (dc > 0 && dc * dc > best_d2 * (1 + 1e-12)) continue;
+    int region = 0;
+    const Eigen::Vector3d c =
+        closest_point_on_triangle(p, V.row(F(f, 0)), V.row(F(f, 1)), V.row(F(f, 2)), region);
+    const Eigen::Vector3d diff = p - c;
+    const double d2 = diff.squaredNorm();
+    const Eigen::Vector3d n = scene.face_normals.row(f).transpose();
+    // Ties (a shared edge or vertex): the face whose plane is most aligned with p - c decides the side.
+    const double cosv = d2 > 0 ? std::abs(diff.dot(n)) / std::sqrt(d2) : 1.0;
+    bool better;
+    if (best.triangle < 0)
+      better = d2 <= cutoff * cutoff;
+    else if (std::abs(d2 - best_d2) <= 1e-12 * (1 + best_d2))
+      better = cosv > best_cos;
+    else
+      better = d2 < best_d2;
+    if (better) {
+      best_d2 = d2;
+      best_cos = cosv;
+      best.triangle = f;
+      best.closest = c;
+      best_diff = diff;
+    }
+  }
+  if (best.triangle < 0) return best;
+  const Eigen::Vector3d n = scene.face_normals.row(best.triangle).transpose();
+  const double dist = std::sqrt(best_d2);
+  const bool inside = best_diff.dot(n) <= 0;
+  best.signed_distance = inside ? dist : -dist;
+  if (dist > 1e-9)
+    best.inward = inside ? Eigen::Vector3d(best_diff / dist) : Eigen::Vector3d(-best_diff / dist);
+  else
+    best.inward = -n;
+  return best;
+}
+
+WallDistance wall_distance(const VesselScene& scene, const Eigen::Vector3d& p) {
+  int tri = -1;
+  const double d = nearest_triangle(scene, p, tri);
+  std::vector<int> cand;
+  triangles_within(scene, p, d + 1e-6 + 1e-9 * (1 + d), cand);
+  if (tri >= 0) cand.push_back(tri);
+  return wall_distance_among(scene, p, cand, d + 1e-3 + 1e-6 * d);
+}
+
+}  // namespace gw

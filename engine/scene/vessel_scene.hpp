@@ -1,0 +1,51 @@
+#pragma once
+// The rigid vessel wall: the triangle mesh, per-face data for exact closest points and an FCL BVH
+// over it for the broad phase. Constant while stepping; copies share the BVH.
+// The lumen is the INSIDE of the closed, outward-oriented surface: the wire must stay inside.
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "engine/mesh/triangle_mesh.hpp"
+
+namespace gw {
+
+struct VesselSceneBvh;  // FCL objects, hidden so FCL headers stay out of every includer
+
+struct VesselScene {
+  TriangleMesh mesh;
+  Eigen::MatrixX3d face_normals;        // unit outward normals
+  Eigen::MatrixX3d face_centres;        // bounding-sphere centres (centroids)
+  Eigen::VectorXd face_radii;           // bounding-sphere radii around the centroids
+  std::shared_ptr<const VesselSceneBvh> bvh;
+};
+
+// Builds the BVH. Throws std::runtime_error for an empty mesh, non-finite vertices, bad indices or a
+// non-positive signed volume (inward-facing normals would turn "inside the vessel" into "outside").
+VesselScene make_vessel_scene(const TriangleMesh& mesh);
+
+// Closest wall point to `p`, signed clearance (> 0 inside the lumen) and the direction into the lumen.
+struct WallDistance {
+  double signed_distance = 0;                          // distance to the surface, positive inside
+  Eigen::Vector3d closest = Eigen::Vector3d::Zero();
+  Eigen::Vector3d inward = Eigen::Vector3d::Zero();    // unit, from the wall towards the lumen
+  int triangle = -1;
+};
+
+// Exact closest point among all triangles (FCL distance query + exact refinement). Slow path:
+// for tests and one-off queries; stepping uses cached candidate lists (engine/contact).
+WallDistance wall_distance(const VesselScene& scene, const Eigen::Vector3d& p);
+
+// Closest point among `triangles` only; signed_distance = +inf and triangle = -1 if the list is empty.
+// `cutoff`: triangles whose bounding sphere is farther than this are skipped (early out).
+WallDistance wall_distance_among(const VesselScene& scene, const Eigen::Vector3d& p, const std::vector<int>& triangles,
+                                 double cutoff);
+
+// Every triangle within `radius` of `p` (FCL sphere-vs-BVH collision query), appended to `out` after
+// clearing it.
+void triangles_within(const VesselScene& scene, const Eigen::Vector3d& p, double radius, std::vector<int>& out);
+
+// Unsigned distance from `p` to the nearest triangle and that triangle (FCL distance query).
+double nearest_triangle(const VesselScene& scene, const Eigen::Vector3d& p, int& triangle);
+
+}  // namespace gw

@@ -1,0 +1,190 @@
+#include "engine/sim/step.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "engine/contact/detect_contacts.hpp"
+#include "engine/contact/solve_contacts.hpp"
+#include "engine/sim/assemble_system.hpp"
+#include "engine/wire/so3.hpp"
+
+namespace gw {
+
+namespace {
+
+// Per-thread scratch: sized on first use, reused by every later step (no allocation per step).
+struct StepWorkspace {
+  DynamicsSystem sys;
+  BlockTridiagonalFactor factor;
+  Eigen::VectorXd dv;
+  std::vector<Eigen::Vector3d> x_pred;
+  std::vector<ContactPoint> contacts;
+  std::vector<Eigen::Vector3d> v_contact;
+  ContactWorkspace cws;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point& t) {
+  const auto now = std::chrono::steady_clock::now();
+  const double s = std::chrono::duration<double>(now - t).count();
+  t = now;
+  return s;
+}
+
+StepReport fail(WireState& state, StepReport rep, const std::string& problem) {
+  rep.ok = false;
+  rep.problem = problem;
+  state.diverged = problem;
+  return rep;
+}
+
+Eigen::Vector3d point_velocity(const ContactPoint& c, const std::vector<Eigen::Vector3d>& v_node) {
+  Eigen::Vector3d v = c.wa * v_node[c.node_a];
+  if (c.node_b >= 0) v += c.wb * v_node[c.node_b];
+  return v;
+}
+
+}  // namespace
+
+StepReport step(const WireModel& model, const VesselScene* scene, const Control& control, WireState& state) {
+  StepReport rep;
+  const int n = model.nodes;
+  if (static_cast<int>(state.x.size()) != n || static_cast<int>(state.q.size()) != n ||
+      static_cast<int>(state.v.size()) != n || static_cast<int>(state.w.size()) != n ||
+      static_cast<int>(state.external_force.size()) != n || static_cast<int>(state.external_torque.size()) != n ||
+      static_cast<int>(state.contact_force.size()) != n)
+    throw std::invalid_argument("step: the state does not belong to this model (node count differs)");
+  if (!std::isfinite(control.push_mm_per_s) || !std::isfinite(control.rotate_rad_per_s))
+    throw std::invalid_argument("step: control values must be finite");
+  if (!state.diverged.empty())
+    return fail(state, rep, "the state diverged earlier (" + state.diverged + "); reset it");
+
+  thread_local StepWorkspace ws;
+  const double dt = model.dt;
+  const double push = control.push_mm_per_s;
+  const double rotate = control.rotate_rad_per_s;
+  auto clock = std::chrono::steady_clock::now();
+
+  // Assemble the linearised implicit Euler system of the free nodes (Eq. 1).
+  assemble_system(model, state, push, rotate, ws.sys);
+  const int k = ws.sys.first_free;
+  const int nf = n - k;
+  rep.free_nodes = nf;
+  rep.timings.assemble_s = seconds_since(clock);
+
+  // Free motion.
+  if (ws.dv.size() < 6 * n) ws.dv.resize(6 * n);
+  auto dv = ws.dv.head(6 * nf);
+  if (nf > 0) {
+    if (!factor_block_tridiagonal(ws.sys.a, ws.factor))
+      return fail(state, rep, "the implicit system is not positive definite (degenerate wire geometry)");
+    dv = ws.sys.rhs.head(6 * nf);
+    solve_block_tridiagonal(ws.sys.a, ws.factor, dv);
+  }
+  rep.timings.solve_s = seconds_since(clock);
+
+  // Contacts at the predicted positions.
+  std::fill(state.contact_force.begin(), state.contact_force.end(), Eigen::Vector3d::Zero());
+  if (scene && nf > 0) {
+    ws.x_pred.resize(n);
+    ws.v_contact.resize(n);
+    for (int i = 0; i < n; ++i) {
+      ws.v_contact[i] = i < k ? Eigen::Vector3d(push * state.direction)
+                              : Eigen::Vector3d(state.v[i] + dv.segment<3>(6 * (i - k)));
+      ws.x_pred[i] = state.x[i] + dt * ws.v_contact[i];
+    }
+    detect_contacts(model, *scene, state, ws.x_pred, ws.contacts);
+    rep.contacts = static_cast<int>(ws.contacts.size());
+    rep.timings.detect_s = seconds_since(clock);
+    if (!ws.contacts.empty()) {
+      // Velocities of the contact points themselves (reuse x_pred as scratch is not possible: keep both).
+      static thread_local std::vector<Eigen::Vector3d> vc;
+      vc.resize(ws.contacts.size());
+      for (std::size_t c = 0; c < ws.contacts.size(); ++c) vc[c] = point_velocity(ws.contacts[c], ws.v_contact);
+      const ContactSolveResult cr =
+          solve_contacts(ws.sys.a, ws.factor, k, ws.contacts, vc, dt, model.params.friction,
+                         model.params.contact_iterations, ws.cws, dv);
+      rep.contact_iterations = cr.iterations;
+      for (std::size_t c = 0; c < ws.contacts.size(); ++c) {
+        const ContactPoint& cp = ws.contacts[c];
+        const Eigen::Vector3d f = (cp.n * ws.cws.impulse[3 * c] + cp.t1 * ws.cws.impulse[3 * c + 1] +
+                                   cp.t2 * ws.cws.impulse[3 * c + 2]) /
+                                  dt;
+        state.contact_force[cp.node_a] += cp.wa * f;
+        if (cp.node_b >= 0) state.contact_force[cp.node_b] += cp.wb * f;
+      }
+    }
+    rep.timings.constraints_s = seconds_since(clock);
+  }
+
+  // Integrate the free nodes (semi-implicit: positions with the new velocities).
+  double kinetic = 0;
+  for (int i = k; i < n; ++i) {
+    state.v[i] += dv.segment<3>(6 * (i - k));
+    state.w[i] += dv.segment<3>(6 * (i - k) + 3);
+    state.x[i] += dt * state.v[i];
+    state.q[i] = (Eigen::Quaterniond(so3_exp(dt * state.w[i])) * state.q[i]).normalized();
+    kinetic += 0.5 * model.mass[i] * state.v[i].squaredNorm() + 0.5 * model.rot_inertia[i] * state.w[i].squaredNorm();
+  }
+  // Drive the introducer part.
+  state.inserted_length_mm = std::clamp(state.inserted_length_mm + dt * push, 0.0, model.params.length_mm);
+  state.proximal_rotation_rad += dt * rotate;
+  place_held_nodes(model, state, push, rotate);
+  state.time += dt;
+  ++state.steps;
+  rep.energy = ws.sys.elastic_energy + kinetic;
+
+  // Divergence checks.
+  for (int i = k; i < n; ++i) {
+    if (!state.x[i].allFinite() || !state.v[i].allFinite() || !state.w[i].allFinite() ||
+        !state.q[i].coeffs().allFinite())
+      return fail(state, rep, "NaN in the wire state at node " + std::to_string(i) + " (t = " +
+                                  std::to_string(state.time) + " s)");
+    if (state.v[i].norm() > model.params.max_speed_mm_per_s)
+      return fail(state, rep, "exploding velocity: node " + std::to_string(i) + " moves at " +
+                                  std::to_string(state.v[i].norm()) + " mm/s (t = " + std::to_string(state.time) + " s)");
+  }
+  if (!(rep.energy <= model.energy_limit))
+    return fail(state, rep, "exploding energy: " + std::to_string(rep.energy) + " mN mm exceeds the limit " +
+                                std::to_string(model.energy_limit) + " (t = " + std::to_string(state.time) + " s)");
+  if (scene && nf > 0) {
+    // Exact wall distances after the correction for every point that was within reach.
+    double worst = 0;
+    int worst_point = -1;
+    for (const ContactPoint& c : ws.contacts) {
+      const Eigen::Vector3d p = contact_point_position(model, state.x, c.point);
+      const WallDistance wd = cached_wall_distance(model, *scene, state, c.point, p);
+      const double pen = model.radius_mm - wd.signed_distance;
+      rep.max_penetration_mm = std::max(rep.max_penetration_mm, pen);
+      if (-wd.signed_distance > worst) {
+        worst = -wd.signed_distance;
+        worst_point = c.point;
+      }
+    }
+    // Points that were beyond the margin can only have reached the wall if the contact correction moved
+    // them by more than the margin: then check every active point.
+    double moved = 0;
+    if (!ws.contacts.empty())
+      for (int i = 0; i < nf; ++i) moved = std::max(moved, dt * ws.cws.h_t_p.segment<3>(6 * i).norm());
+    if (moved >= model.params.contact_margin_mm) {
+      for (int point = 0; point < contact_point_count(model); ++point) {
+        if (!contact_point_active(model, state, point)) continue;
+        if (point < k || (point >= n && point - n < k)) continue;
+        const WallDistance wd = cached_wall_distance(model, *scene, state, point,
+                                                     contact_point_position(model, state.x, point));
+        rep.max_penetration_mm = std::max(rep.max_penetration_mm, model.radius_mm - wd.signed_distance);
+        if (-wd.signed_distance > worst) {
+          worst = -wd.signed_distance;
+          worst_point = point;
+        }
+      }
+    }
+    if (worst > model.params.divergence_margin_mm)
+      return fail(state, rep, "wire point " + std::to_string(worst_point) + " is " + std::to_string(worst) +
+                                  " mm outside the vessel wall (t = " + std::to_string(state.time) + " s)");
+  }
+  return rep;
+}
+
+}  // namespace gw

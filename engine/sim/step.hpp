@@ -1,0 +1,40 @@
+#pragma once
+// The pure step function (like mj_step): advances `state` by model.dt under `control`.
+// Stages, each timed: assemble (beam forces and tangent stiffness, Eq. 1), solve (block-tridiagonal
+// free motion), detect (wall proximity at the predicted positions), constraints (contact impulses by
+// projected Gauss-Seidel on W = H A^-1 H^T, Eq. 2), then integrate and check for divergence.
+#include <string>
+
+#include "engine/scene/vessel_scene.hpp"
+#include "engine/wire/wire_state.hpp"
+
+namespace gw {
+
+struct Control {
+  double push_mm_per_s = 0;     // proximal insertion speed (negative retracts)
+  double rotate_rad_per_s = 0;  // proximal axial rotation rate (right-handed about the inlet direction)
+};
+
+struct StepTimings {
+  double detect_s = 0, assemble_s = 0, solve_s = 0, constraints_s = 0;
+};
+
+struct StepReport {
+  bool ok = true;
+  std::string problem;            // why ok == false: NaN, exploding energy, node outside the wall, ...
+  int contacts = 0;               // active contact constraints this step
+  double max_penetration_mm = 0;  // deepest wire-surface penetration of the wall after the step
+  int free_nodes = 0;             // nodes out of the introducer (unknowns of the solve)
+  int contact_iterations = 0;     // projected Gauss-Seidel sweeps used
+  double energy = 0;              // elastic + kinetic energy [mN mm = uJ]
+  StepTimings timings;
+};
+
+// Advances the state by one step. `scene` nullptr = free space. Never continues a diverged
+// simulation: on NaN, energy above model.energy_limit, a speed above params.max_speed_mm_per_s or a
+// node more than params.divergence_margin_mm outside the wall it returns ok = false with `problem`
+// set, and marks the state (state.diverged) so later steps refuse until it is reset.
+// Throws std::invalid_argument when the state does not belong to the model or the control is not finite.
+StepReport step(const WireModel& model, const VesselScene* scene, const Control& control, WireState& state);
+
+}  // namespace gw

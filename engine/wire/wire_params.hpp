@@ -1,0 +1,46 @@
+#pragma once
+// Material and geometry of a guidewire: one JSON-loadable parameter set.
+// Units: millimetres, seconds, kilograms (so forces are mN and moduli kPa = mN/mm^2).
+#include <string>
+
+namespace gw {
+
+struct WireParams {
+  double length_mm = 310;              // paper 2.1.1
+  double tip_length_mm = 6;            // curved distal tip (paper 2.1.1)
+  double tip_curvature_per_mm = 0.2;   // rest curvature of the tip, in one plane (paper 2.1.1)
+  // 0.014" = 0.3556 mm outer diameter (coronary workhorse wires, e.g. Abbott Hi-Torque BMW).
+  double diameter_mm = 0.3556;
+  // Nitinol austenite E ~ 40-75 GPa (Pelton et al., "Nitinol medical devices", 2000); 60 GPa in kPa.
+  double young_modulus_kpa = 6.0e7;
+  // Distal tapered core: the core is ground down to ~0.05-0.1 mm under the coil, so the *effective*
+  // bending stiffness of the tip is ~1/10-1/50 of the body (Ritter et al. guidewire tip loads ~1 gf).
+  double tip_young_modulus_kpa = 4.0e6;
+  double poisson_ratio = 0.33;         // nitinol ~0.33
+  double density_kg_per_mm3 = 6.45e-6; // nitinol 6450 kg/m^3
+  double shear_coefficient = 0.9;      // Timoshenko k for a solid circular section (6(1+nu)/(7+6nu))
+  double damping_mass = 1.0;           // Rayleigh alpha [1/s]
+  double damping_stiffness = 1e-3;     // Rayleigh beta [s]
+  double element_length_mm = 2.0;      // body element length
+  double tip_element_length_mm = 0.5;  // finer elements in the distal `fine_region_mm`
+  double fine_region_mm = 12.0;
+  double friction = 0.1;               // Coulomb mu wire/vessel wall (PTFE/hydrophilic coated ~0.05-0.2)
+  double contact_margin_mm = 0.3;      // detect contacts within this clearance
+  double divergence_margin_mm = 0.5;   // a node further outside the wall than this = diverged
+  double inlet_clearance_mm = 1.0;     // wire within this arc past the inlet is not tested (introducer mouth)
+  double contact_slack_mm = 0.5;       // broad-phase cache: candidates gathered this much beyond reach
+  double max_speed_mm_per_s = 1e5;     // any node faster than 100 m/s = exploding simulation
+  int contact_iterations = 40;         // projected Gauss-Seidel sweeps per step
+};
+
+// Reads a JSON object whose keys are the field names above; missing keys keep defaults.
+// Throws std::runtime_error "<file>: <problem>" for unreadable files, wrong types, non-positive sizes.
+WireParams load_wire_params(const std::string& json_path);
+
+// A 0.014" coronary wire (values and sources in the struct comments).
+WireParams default_wire_params();
+
+// Throws std::runtime_error naming the first field out of range; `where` prefixes the message.
+void check_wire_params(const WireParams& p, const std::string& where);
+
+}  // namespace gw

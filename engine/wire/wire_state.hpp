@@ -1,0 +1,60 @@
+#pragma once
+// The mutable part of the simulation (like mjData): plain values, cheap and exact to copy.
+// Copying a state and stepping both copies with the same controls gives bit-identical results.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+#include "engine/wire/wire_model.hpp"
+
+namespace gw {
+
+// Per contact point (node or element midpoint), the wall triangles that may come within reach, found
+// by an FCL query around `centre`. Valid while the point stays within `slack` of `centre`; a pure
+// accelerator: results are identical with an empty cache.
+struct WallCandidates {
+  Eigen::Vector3d centre = Eigen::Vector3d::Constant(1e300);
+  double slack = -1;               // < 0: invalid
+  std::vector<int> triangles;      // wall triangles within (reach + slack) of centre
+  double clearance = 0;            // when `triangles` is empty: signed wall distance at centre (> 0 inside)
+};
+
+struct WireState {
+  std::vector<Eigen::Vector3d> x;     // node positions [mm], proximal -> distal
+  std::vector<Eigen::Quaterniond> q;  // node frames (local x = tangent, tip bends towards local +y)
+  std::vector<Eigen::Vector3d> v;     // linear velocities [mm/s]
+  std::vector<Eigen::Vector3d> w;     // angular velocities, world frame [rad/s]
+  std::vector<Eigen::Vector3d> external_force;   // applied loads on free nodes [mN] (tests, user)
+  std::vector<Eigen::Vector3d> external_torque;  // [mN mm]
+  std::vector<Eigen::Vector3d> contact_force;    // last step's wall force per node [mN]
+  Eigen::Vector3d inlet = Eigen::Vector3d::Zero();
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
+  Eigen::Quaterniond base_frame = Eigen::Quaterniond::Identity();  // introducer frame at zero roll
+  double inserted_length_mm = 0;
+  double proximal_rotation_rad = 0;
+  double time = 0;
+  long steps = 0;
+  std::string diverged;                  // non-empty once a step failed: the problem; reset to go on
+  std::vector<WallCandidates> wall_cache;  // contact broad-phase cache (nodes, then element midpoints)
+  const void* wall_cache_scene = nullptr;  // scene the cache was built for
+};
+
+// Wire along `direction` with its tip `inserted_length_mm` past `inlet`, rolled by
+// `proximal_rotation_rad` about the axis; the inserted part starts in its rest shape (curved tip, at
+// rest). Throws std::runtime_error for a zero or non-finite direction/inlet or a negative length.
+WireState make_initial_state(const WireModel& model, const Eigen::Vector3d& inlet, const Eigen::Vector3d& direction,
+                             double proximal_rotation_rad, double inserted_length_mm = 2.0);
+
+// First node that is out of the introducer (free); nodes before it are driven kinematically.
+// Returns model.nodes when nothing is inserted yet. Node 0 is always held.
+int first_free_node(const WireModel& model, const WireState& state);
+
+// Places the introducer-held nodes on the inlet axis with the current roll; their velocities are the
+// push along the axis and the roll rate about it.
+void place_held_nodes(const WireModel& model, WireState& state, double push_mm_per_s, double rotate_rad_per_s);
+
+// The frame of the held (introducer) part at the state's current roll.
+Eigen::Quaterniond introducer_frame(const WireState& state);
+
+}  // namespace gw

@@ -69,6 +69,8 @@ def main(argv: list[str] | None = None) -> None:
     index = Path(args.index)
     root = index.resolve().parent.parent  # paths in the index are relative to the repository root
     entries = json.loads(index.read_text())["anatomies"]
+    order = {"train": 0, "sensitivity": 1, "test": 2}  # what we train on first, then what we test on
+    entries.sort(key=lambda e: (order.get(e["set"], 3), e["name"]))
     cols = 4
     rows = math.ceil(len(entries) / cols)
     fig = plt.figure(figsize=(4.2 * cols, 4.0 * rows))

@@ -1,0 +1,36 @@
+#include "apps/report/trajectory.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace gw {
+
+const std::vector<std::string> kTraceOutcomes = {"success", "wrong_branch", "stuck", "timeout", "diverged"};
+
+void check_trace(const EpisodeTrace& t, const std::string& what) {
+  auto fail = [&](const std::string& problem) { throw std::invalid_argument(what + ": " + problem); };
+  const std::size_t n = t.time_s.size();
+  auto same = [&](std::size_t m, const char* name) {
+    if (m != n)
+      fail(std::string(name) + " has " + std::to_string(m) + " frames but time_s has " + std::to_string(n));
+  };
+  same(t.tip.size(), "tip");
+  same(t.action.size(), "action");
+  same(t.agent_in_control.size(), "agent_in_control");
+  if (std::find(kTraceOutcomes.begin(), kTraceOutcomes.end(), t.outcome) == kTraceOutcomes.end()) {
+    std::string valid;
+    for (const auto& o : kTraceOutcomes) valid += (valid.empty() ? "" : ", ") + o;
+    fail("outcome '" + t.outcome + "' is not one of " + valid);
+  }
+  if (t.target_id < 0) fail("target_id must be >= 0, got " + std::to_string(t.target_id));
+  if (!t.wire_shape_frame.empty()) {
+    if (t.wire_shape_frame.size() != t.wire_shapes.size())
+      fail("wire_shape_frame has " + std::to_string(t.wire_shape_frame.size()) + " entries but there are " +
+           std::to_string(t.wire_shapes.size()) + " wire shapes");
+    for (int f : t.wire_shape_frame)
+      if (f < 0 || static_cast<std::size_t>(f) >= n)
+        fail("wire_shape_frame " + std::to_string(f) + " is outside 0.." + std::to_string(n) + "-1");
+  }
+}
+
+}  // namespace gw

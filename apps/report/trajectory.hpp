@@ -1,0 +1,43 @@
+#pragma once
+// One navigation episode as recorded by the navigate runner: the plain data every
+// writer of gw_report takes (trajectory JSON, .vtp, biplane PNG). Millimetres, seconds.
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace gw {
+
+struct EpisodeTrace {
+  std::string anatomy;     // e.g. "coronary"
+  std::string controller;  // "sac-policy" | "push-only" | "scripted-omega" (free text)
+  int target_id = 0;
+  std::uint64_t seed = 0;
+  std::string outcome;  // one of kTraceOutcomes: "success" | "wrong_branch" | "stuck" | "timeout" | "diverged"
+  std::string detail;   // e.g. "bifurcation 2: entered branch 5", or the divergence problem
+
+  // Per recorded frame; all four have the same length. Positions may be non-finite in
+  // the last frames of a diverged episode: writers skip or null them, never crash.
+  std::vector<double> time_s;
+  std::vector<Eigen::Vector3d> tip;
+  std::vector<double> action;
+  std::vector<bool> agent_in_control;
+
+  // Inserted wire polyline (proximal to distal), every k-th frame (k chosen by the
+  // caller) and the last frame. wire_shape_frame[i] is the frame index (into time_s) of
+  // wire_shapes[i]; leave it empty when unknown (then the last shape is taken as the
+  // final frame's). The last entry of wire_shapes is "the final wire shape".
+  std::vector<std::vector<Eigen::Vector3d>> wire_shapes;
+  std::vector<int> wire_shape_frame;
+};
+
+// The outcomes a trace may carry (what navigate's summary counts).
+extern const std::vector<std::string> kTraceOutcomes;
+
+// Throws std::invalid_argument "<what>: <problem>" when the trace is inconsistent:
+// per-frame vectors of different lengths, an outcome not in kTraceOutcomes, a negative
+// target id, wire_shape_frame neither empty nor one frame index (in range) per shape.
+// `what` names the trace in the message (e.g. the output file).
+void check_trace(const EpisodeTrace& trace, const std::string& what = "trace");
+
+}  // namespace gw

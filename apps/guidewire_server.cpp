@@ -1,0 +1,59 @@
+// guidewire-server: serves the navigation environment over TCP, newline-delimited JSON, one
+// environment per connection (protocol in apps/server/env_session.hpp). The first stdout line is
+// {"port": N} (useful with --port 0), then the server runs until SIGINT/SIGTERM.
+#include <CLI/CLI.hpp>
+#include <csignal>
+#include <iostream>
+
+#include "apps/server/tcp_server.hpp"
+#include "engine/task/navigation_task.hpp"
+
+namespace {
+gw::TcpServer* g_server = nullptr;
+void on_signal(int) {
+  if (g_server) g_server->request_stop();
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Guidewire navigation environment server (JSON lines over TCP)"};
+  gw::ServerOptions options;
+  std::string anatomies = "train", index = gw::default_anatomy_index(), wire_json, control_mode = "auto";
+  gw::TaskConfig config;
+  app.add_option("--port", options.port, "TCP port; 0 picks a free one (printed as the first stdout line)")->required();
+  app.add_option("--host", options.host, "address to listen on")->capture_default_str();
+  app.add_option("--anatomies", anatomies,
+                 "comma-separated anatomy sets (train, test, sensitivity), names from the index, or mesh paths")
+      ->capture_default_str();
+  app.add_option("--index", index, "anatomy index JSON")->capture_default_str();
+  app.add_option("--wire", wire_json, "wire parameter JSON (default: 0.014\" coronary wire)");
+  app.add_option("--control", control_mode, "when the action applies: always, near_bifurcation, auto")
+      ->capture_default_str();
+  app.add_option("--step-time-limit", options.session.step_time_limit_s,
+                 "seconds one env step may run before it is cut off with an error (0 = none)")
+      ->capture_default_str();
+  app.add_option("--max-line", options.max_line_bytes, "longest accepted request line in bytes")->capture_default_str();
+  app.add_option("--seed", options.seed, "seed stream for resets sent without a seed")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    config.control_mode = gw::parse_control_mode(control_mode);
+    const gw::WireParams wire = wire_json.empty() ? gw::default_wire_params() : gw::load_wire_params(wire_json);
+    const gw::NavigationTask task = gw::make_navigation_task(config, wire, gw::load_anatomies(anatomies, index));
+    gw::TcpServer server(task, options);
+    g_server = &server;
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+    std::signal(SIGPIPE, SIG_IGN);
+    std::cout << "{\"port\": " << server.port() << "}" << std::endl;
+    std::cerr << "guidewire-server: " << task.anatomies.size() << " anatomies, listening on " << options.host << ":"
+              << server.port() << std::endl;
+    server.serve();
+    server.stop();
+    g_server = nullptr;
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "guidewire-server: " << e.what() << std::endl;
+    return 1;
+  }
+}

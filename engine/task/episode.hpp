@@ -1,0 +1,83 @@
+#pragma once
+// One navigation episode (paper 2.2): reset places the wire at the inlet with a seeded random roll
+// and tilt; each env step pushes at constant speed for frame_skip physics steps while rotating at
+// action * max rotation rate, then observes, rewards and checks the end conditions.
+// Like mjData, EpisodeState is plain mutable data: copy it to branch an episode. Deterministic:
+// the same task, seed and actions give the same trajectory bit for bit.
+#include <cstdint>
+#include <string>
+
+#include "engine/task/navigation_task.hpp"
+#include "engine/task/observation.hpp"
+#include "engine/task/tip_samples.hpp"
+#include "engine/wire/wire_state.hpp"
+
+namespace gw {
+
+struct EpisodeState {
+  int anatomy = -1;
+  int target_id = 0;
+  std::uint64_t seed = 0;
+  const Course* course = nullptr;  // into the task's courses
+  double start_rotation_rad = 0.0;
+  double start_tilt_rad = 0.0;
+  WireState wire;
+  Observation obs{};
+  int goal = 0;                    // index into course->goal_arc
+  double lambda0_mm = 1.0;         // lambda when the current goal became current
+  double lambda_mm = 0.0;          // tip-to-goal distance along the centerline
+  double progress_mm = 0.0;        // arc length of the tip's projection on the course
+  double best_progress_mm = 0.0;   // for the stuck test
+  int best_progress_step = 0;
+  Eigen::Vector3d tip = Eigen::Vector3d::Zero();
+  bool in_control = true;          // whether the next action is applied
+  int steps = 0;
+  int max_steps = 0;
+  bool done = false;
+  TipSamples samples;              // scratch, kept here so stepping does not allocate
+};
+
+// Why an episode ended (or that it did not) and what the agent cannot see but a user wants to log.
+struct StepInfo {
+  bool in_control = true;          // whether the NEXT action will be applied (trees: within 20 mm)
+  bool success = false;            // terminated: tip within success_radius_mm of the target
+  bool wrong_branch = false;       // terminated: tip entered a wrong child
+  bool step_limit = false;         // truncated
+  bool stuck = false;              // truncated: no progress for stuck_steps
+  bool wire_exhausted = false;     // truncated: the wire is (almost) fully inserted
+  bool time_limit = false;         // truncated: the step ran past StepLimits::wall_time_s
+  std::string problem;             // non-empty when physics diverged or the time limit hit
+  int step = 0;
+  int goal = 0, goals = 1;         // current goal index / number of goals
+  double lambda_mm = 0.0;
+  double tip_to_target_mm = 0.0;
+  double progress_mm = 0.0;
+  double inserted_mm = 0.0;
+  int contacts = 0;                // last physics step's contact count
+};
+
+struct StepOutcome {
+  Observation obs{};
+  double reward = 0.0;
+  bool terminated = false;  // success or wrong branch (an MDP end)
+  bool truncated = false;   // step limit, stuck, wire exhausted, physics problem, time limit
+  StepInfo info;
+};
+
+// Optional per-call limits (the server uses them so a runaway step cannot hang a connection).
+struct StepLimits {
+  double wall_time_s = 0.0;  // 0 = none; checked after every physics step
+};
+
+// Starts an episode. `anatomy` < 0 and `target_id` == 0 mean "draw from the seed". Throws
+// std::invalid_argument for an unknown anatomy index or target (naming the valid range).
+EpisodeState reset_episode(const NavigationTask& task, int anatomy, int target_id, std::uint64_t seed);
+
+// Info describing the current state (what reset reports).
+StepInfo episode_info(const NavigationTask& task, const EpisodeState& state);
+
+// One env step with `action` in [-1, 1] (clipped; ignored while !state.in_control). Throws
+// std::invalid_argument for a non-finite action and std::logic_error when the episode is over.
+StepOutcome step_episode(const NavigationTask& task, EpisodeState& state, double action, const StepLimits& limits = {});
+
+}  // namespace gw

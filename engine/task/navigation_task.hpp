@@ -1,0 +1,30 @@
+#pragma once
+// The navigation task model (like mjModel): everything constant across episodes — the task
+// configuration, the wire model, the anatomies and, for every target, its prepared course.
+// Episodes (episode.hpp) hold pointers into it: keep the task alive and unmodified while they run.
+#include <string>
+#include <vector>
+
+#include "engine/task/anatomy.hpp"
+#include "engine/task/course.hpp"
+#include "engine/task/task_config.hpp"
+#include "engine/wire/wire_model.hpp"
+#include "engine/wire/wire_params.hpp"
+
+namespace gw {
+
+struct NavigationTask {
+  TaskConfig config;
+  WireModel wire;
+  std::vector<Anatomy> anatomies;
+  std::vector<std::vector<Course>> courses;  // courses[a][k] leads to target k + 1 of anatomy a
+};
+
+// Checks `config`, builds the wire model (dt = config.dt_s) and every course. Throws
+// std::invalid_argument for a bad config, no anatomies, or an anatomy whose target cannot be planned.
+NavigationTask make_navigation_task(const TaskConfig& config, const WireParams& wire, std::vector<Anatomy> anatomies);
+
+// Index of the anatomy called `name`, or -1.
+int find_anatomy(const NavigationTask& task, const std::string& name);
+
+}  // namespace gw

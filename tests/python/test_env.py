@@ -1,0 +1,119 @@
+"""GuidewireEnv: the gymnasium client of guidewire-server (checkers, determinism, vector envs, shutdown)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from guidewire_nav.env import GuidewireEnv, ServerError, find_server_binary, make_env, start_server
+
+
+@pytest.fixture(scope="module")
+def server_bin():
+    path = find_server_binary()
+    if not path.is_file():
+        pytest.skip(f"guidewire-server not built ({path}); set GW_SERVER_BIN or GW_BUILD_DIR")
+    return path
+
+
+@pytest.fixture(scope="module")
+def env(server_bin):
+    e = GuidewireEnv(anatomies="t1_straight_y")
+    yield e
+    e.close()
+
+
+def test_spaces_follow_the_spec(env):
+    assert env.observation_space.shape == (11,)
+    assert env.action_space.shape == (1,)
+    assert env.observation_space.dtype == np.float32
+    assert env.observation_names[9] == "omega"
+    assert env.anatomy_names == ["t1_straight_y"]
+
+
+def test_gymnasium_and_sb3_checkers_pass(env):
+    from gymnasium.utils.env_checker import check_env as gym_check
+    from stable_baselines3.common.env_checker import check_env as sb3_check
+
+    gym_check(env, skip_render_check=True)
+    sb3_check(env, warn=True)
+
+
+def test_same_seed_and_actions_give_the_same_trajectory(env):
+    def run(seed):
+        obs, info = env.reset(seed=seed)
+        trace = [obs]
+        rewards = []
+        for k in range(15):
+            obs, r, term, trunc, _ = env.step(np.array([math.sin(k)], dtype=np.float32))
+            trace.append(obs)
+            rewards.append(r)
+            if term or trunc:
+                break
+        return np.stack(trace), rewards, info
+
+    a, ra, ia = run(123)
+    b, rb, ib = run(123)
+    c, _, ic = run(124)
+    assert np.array_equal(a, b) and ra == rb
+    assert ia["start_rotation_rad"] == ib["start_rotation_rad"]
+    assert ic["start_rotation_rad"] != ia["start_rotation_rad"]
+
+
+def test_reset_options_and_server_errors(env):
+    _, info = env.reset(seed=1, options={"anatomy": "t1_straight_y", "target": 2})
+    assert info["anatomy"] == "t1_straight_y" and info["target"] == 2
+    with pytest.raises(ServerError, match="unknown anatomy"):
+        env.reset(seed=1, options={"anatomy": "nowhere"})
+    with pytest.raises(ServerError, match="valid targets"):
+        env.reset(seed=1, options={"target": 99})
+    env.reset(seed=1)
+    with pytest.raises(ValueError, match="not finite"):
+        env.step(np.array([np.nan]))
+    with pytest.raises(ValueError, match="1 value"):
+        env.step(np.array([0.1, 0.2]))
+    obs, reward, *_ = env.step(np.array([0.2]))  # still usable
+    assert np.all(np.isfinite(obs)) and math.isfinite(reward)
+
+
+def test_connects_to_a_running_server_and_closes_cleanly(server_bin):
+    proc, port = start_server("t1_straight_y")
+    try:
+        e1 = GuidewireEnv(host="127.0.0.1", port=port)
+        e2 = GuidewireEnv(port=port)
+        o1, _ = e1.reset(seed=5)
+        o2, _ = e2.reset(seed=5)
+        assert np.array_equal(o1, o2)  # one independent env per connection
+        for action in (1.0, -0.5, 0.0):  # interleaved: each connection keeps its own episode
+            assert np.array_equal(e1.step([action])[0], e2.step([action])[0])
+        e1.close()
+        e1.close()  # idempotent
+        e2.close()
+        assert proc.poll() is None  # closing clients does not stop a shared server
+    finally:
+        proc.terminate()
+        assert proc.wait(timeout=10) == 0  # SIGTERM: clean exit
+
+
+def test_own_server_is_stopped_on_close(server_bin):
+    e = GuidewireEnv(anatomies="t1_straight_y")
+    proc = e._proc
+    assert proc is not None and proc.poll() is None
+    e.close()
+    assert proc.poll() == 0
+
+
+def test_subproc_vec_env_with_one_server_per_env(server_bin):
+    from stable_baselines3.common.vec_env import SubprocVecEnv
+
+    venv = SubprocVecEnv([make_env(i, anatomies="t1_straight_y") for i in range(2)])
+    try:
+        venv.seed(7)
+        obs = venv.reset()
+        assert obs.shape == (2, 11)
+        for _ in range(3):
+            obs, rewards, dones, infos = venv.step(np.zeros((2, 1), dtype=np.float32))
+        assert obs.shape == (2, 11) and rewards.shape == (2,)
+        assert all("progress_mm" in i for i in infos)
+    finally:
+        venv.close()

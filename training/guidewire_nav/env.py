@@ -1,0 +1,226 @@
+"""Gymnasium environment backed by the C++ guidewire simulator (``guidewire-server``).
+
+By default the environment starts its own local server process (``--port 0``, it prints the port it
+got) and talks to it over a TCP socket with the newline-delimited JSON protocol of design.md; pass
+``host``/``port`` to use a server that is already running, e.g. on another machine.
+
+    env = GuidewireEnv()                                   # own server, the 4 training anatomies
+    env = GuidewireEnv(host="10.0.0.5", port=5555)         # remote server
+    env = GuidewireEnv(options={"anatomy": "t1_straight_y", "target": 2})
+
+Observation: 11 float32 values, layout "guidewire-nav/obs/1" (engine/task/observation.hpp):
+theta_t (3), theta_{t-n dt} (3), lambda_t, lambda_{t-n dt}, a_t, omega, s.  Action: one float in
+[-1, 1], the proximal rotation rate as a fraction of the maximum.  Reward: paper Eq. 3.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import select
+import signal
+import socket
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+
+import guidewire_nav
+
+PROTOCOL = "guidewire-nav/protocol/1"
+OBS_LAYOUT = "guidewire-nav/obs/1"
+
+
+class ServerError(RuntimeError):
+    """The server answered a request with ``"ok": false``."""
+
+
+def find_server_binary() -> Path:
+    """The ``guidewire-server`` executable: $GW_SERVER_BIN, else <$GW_BUILD_DIR or BUILD_DIR>/apps/."""
+    explicit = os.environ.get("GW_SERVER_BIN")
+    if explicit:
+        return Path(explicit)
+    build = Path(os.environ.get("GW_BUILD_DIR", guidewire_nav.BUILD_DIR))
+    return build / "apps" / "guidewire-server"
+
+
+def _die_with_parent() -> None:  # pragma: no cover - runs in the child before exec
+    # Linux: the server gets SIGTERM when the Python process that started it dies, even by SIGKILL.
+    try:
+        import ctypes
+
+        ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
+    except Exception:
+        pass
+
+
+def start_server(
+    anatomies: str = "train", binary: str | os.PathLike | None = None, extra_args: list[str] | None = None,
+    timeout: float = 120.0,
+) -> tuple[subprocess.Popen, int]:
+    """Starts a local server on a free port; returns (process, port)."""
+    binary = Path(binary) if binary else find_server_binary()
+    if not binary.is_file():
+        raise FileNotFoundError(
+            f"{binary}: guidewire-server not found; build it (cmake --build build --target guidewire-server) "
+            "or set GW_SERVER_BIN / GW_BUILD_DIR"
+        )
+    cmd = [str(binary), "--port", "0", "--host", "127.0.0.1", "--anatomies", anatomies, *(extra_args or [])]
+    proc = subprocess.Popen(
+        cmd, stdout=subprocess.PIPE, stdin=subprocess.DEVNULL,
+        preexec_fn=_die_with_parent if sys.platform.startswith("linux") else None,
+    )
+    assert proc.stdout is not None
+    ready, _, _ = select.select([proc.stdout], [], [], timeout)
+    line = proc.stdout.readline() if ready else b""
+    if not line:
+        proc.kill()
+        proc.wait()
+        raise RuntimeError(f"guidewire-server did not start (exit code {proc.returncode}): {' '.join(cmd)}")
+    port = int(json.loads(line)["port"])
+    proc.stdout.close()  # nothing else is printed on stdout
+    return proc, port
+
+
+class GuidewireEnv(gym.Env):
+    """Paper section 2.2 navigation task: constant push, the agent controls the rotation."""
+
+    metadata = {"render_modes": []}
+
+    def __init__(
+        self,
+        host: str | None = None,
+        port: int | None = None,
+        anatomies: str = "train",
+        options: dict[str, Any] | None = None,
+        server_binary: str | os.PathLike | None = None,
+        server_args: list[str] | None = None,
+        timeout: float = 120.0,
+    ):
+        """``options`` are the default reset options ({"anatomy": name or index, "target": id});
+        without them every reset draws an anatomy and a target from its seed."""
+        super().__init__()
+        self._proc: subprocess.Popen | None = None
+        self._sock: socket.socket | None = None
+        if port is None:
+            if host not in (None, "127.0.0.1", "localhost"):
+                raise ValueError("give a port to connect to a remote server")
+            self._proc, port = start_server(anatomies, server_binary, server_args, timeout)
+            host = "127.0.0.1"
+        self.host, self.port = host or "127.0.0.1", int(port)
+        try:
+            self._sock = socket.create_connection((self.host, self.port), timeout=timeout)
+            self._sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+            self._reader = self._sock.makefile("rb")
+            self.spec_reply = self._request({"cmd": "spec"})
+        except BaseException:
+            self.close()
+            raise
+        if self.spec_reply.get("protocol") != PROTOCOL or self.spec_reply.get("obs_layout") != OBS_LAYOUT:
+            self.close()
+            raise RuntimeError(
+                f"server speaks {self.spec_reply.get('protocol')} / {self.spec_reply.get('obs_layout')}, "
+                f"this client {PROTOCOL} / {OBS_LAYOUT}"
+            )
+        obs_space = self.spec_reply["observation_space"]
+        self.observation_space = gym.spaces.Box(
+            low=np.asarray(obs_space["low"], dtype=np.float32),
+            high=np.asarray(obs_space["high"], dtype=np.float32),
+            dtype=np.float32,
+        )
+        act_space = self.spec_reply["action_space"]
+        self.action_space = gym.spaces.Box(
+            low=np.asarray(act_space["low"], dtype=np.float32),
+            high=np.asarray(act_space["high"], dtype=np.float32),
+            dtype=np.float32,
+        )
+        self.observation_names = list(obs_space["names"])
+        self.anatomy_names = [a["name"] for a in self.spec_reply["anatomies"]]
+        self.default_options = dict(options or {})
+
+    # --- protocol ---------------------------------------------------------------------------------
+    def _request(self, message: dict[str, Any]) -> dict[str, Any]:
+        if self._sock is None:
+            raise RuntimeError("environment is closed")
+        self._sock.sendall(json.dumps(message, allow_nan=False).encode() + b"\n")
+        line = self._reader.readline()
+        if not line:
+            raise ConnectionError(f"guidewire-server at {self.host}:{self.port} closed the connection")
+        reply = json.loads(line)
+        if not reply.get("ok", False):
+            raise ServerError(reply.get("error", "server error without a message"))
+        return reply
+
+    def _obs(self, values: list[float]) -> np.ndarray:
+        return np.asarray(values, dtype=np.float32)
+
+    # --- gymnasium API ------------------------------------------------------------------------------
+    def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
+        super().reset(seed=seed)
+        # The episode seed comes from gymnasium's generator: reset(seed=s) is reproducible and
+        # seedless resets continue the seeded stream.
+        episode_seed = int(self.np_random.integers(0, 2**63 - 1))
+        opts = dict(self.default_options)
+        opts.update(options or {})
+        reply = self._request({"cmd": "reset", "seed": episode_seed, "options": opts})
+        return self._obs(reply["obs"]), reply["info"]
+
+    def step(self, action):
+        a = np.asarray(action, dtype=np.float64).reshape(-1)
+        if a.size != 1:
+            raise ValueError(f"action must hold 1 value, got {a.size}")
+        value = float(a[0])
+        if not math.isfinite(value):
+            raise ValueError(f"action is not finite: {value}")
+        reply = self._request({"cmd": "step", "action": [value]})
+        return (
+            self._obs(reply["obs"]),
+            float(reply["reward"]),
+            bool(reply["terminated"]),
+            bool(reply["truncated"]),
+            reply["info"],
+        )
+
+    def close(self):
+        if self._sock is not None:
+            try:
+                self._sock.settimeout(2.0)
+                self._sock.sendall(b'{"cmd":"close"}\n')
+                self._reader.readline()
+            except OSError:
+                pass
+            try:
+                self._reader.close()
+            except Exception:
+                pass
+            self._sock.close()
+            self._sock = None
+        if self._proc is not None:
+            if self._proc.poll() is None:
+                self._proc.terminate()
+                try:
+                    self._proc.wait(timeout=10)
+                except subprocess.TimeoutExpired:
+                    self._proc.kill()
+                    self._proc.wait()
+            self._proc = None
+        super().close()
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:
+            pass
+
+
+def make_env(rank: int = 0, **kwargs):
+    """Factory for SB3 vector envs: ``SubprocVecEnv([make_env(i) for i in range(N)])`` (one server each)."""
+
+    def _init():
+        return GuidewireEnv(**kwargs)
+
+    return _init

@@ -46,6 +46,29 @@ std::string fit_text(std::string s, int max_width, int scale) {
   return s + "...";
 }
 
+// Greedy word wrap into lines of at most `max_width` pixels (a word longer than a line is cut).
+std::vector<std::string> wrap_text(const std::string& text, int max_width, int scale) {
+  std::vector<std::string> lines;
+  std::string line, word;
+  auto flush_word = [&] {
+    if (word.empty()) return;
+    const std::string joined = line.empty() ? word : line + " " + word;
+    if (text_width(joined, scale) <= max_width || line.empty()) line = joined;
+    else {
+      lines.push_back(line);
+      line = word;
+    }
+    word.clear();
+  };
+  for (char c : text) {
+    if (c == ' ') flush_word();
+    else word += c;
+  }
+  flush_word();
+  if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
 std::string headline(const std::vector<EpisodeTrace>& traces, Rgb& color) {
   if (traces.empty()) {
     color = pal::kText;
@@ -323,21 +346,31 @@ BiplaneRender render_biplane(const TriangleMesh& mesh, const CenterlineGraph& gr
   const std::array<ViewAxes, 2> axes = choose_biplane_axes(scene, graph.inlet.position, options.axes);
 
   // Header: outcome line, generated summary, caller's lines (as many as leave a usable panel).
+  // An outcome too long for one big line keeps its label big and wraps the detail below it.
   BiplaneRender out{Image(W, H, pal::kBackground), {}};
   Image& img = out.image;
+  const int text_w = W - 2 * kOuter - 4;
   Rgb head_color;
-  const std::string head = headline(traces, head_color);
-  std::vector<std::string> lines = {summary_line(traces, target)};
-  lines.insert(lines.end(), title_lines.begin(), title_lines.end());
+  std::string head = headline(traces, head_color);
+  std::vector<std::pair<std::string, Rgb>> lines;
+  if (text_width(head, kHeadlineScale) > text_w && traces.size() == 1) {
+    head = outcome_label(traces[0].outcome);
+    for (const auto& l : wrap_text(traces[0].detail, text_w, kTitleScale)) {
+      if (lines.size() == 2) break;  // the JSON holds the full text
+      lines.emplace_back(l, head_color);
+    }
+  }
+  lines.emplace_back(summary_line(traces, target), pal::kText);
+  for (const auto& l : title_lines) lines.emplace_back(l, pal::kText);
   const int legend_h = 30;
   const int line_h = kGlyphHeight * kTitleScale + kLineGap;
   const int head_h = kOuter + kGlyphHeight * kHeadlineScale + 2 * kLineGap;
   const int max_lines = std::max(0, (H - legend_h - kMinPanelHeight - head_h - kOuter) / line_h);
   if (static_cast<int>(lines.size()) > max_lines) lines.resize(static_cast<std::size_t>(max_lines));
-  draw_text(img, kOuter + 2, kOuter, fit_text(head, W - 2 * kOuter, kHeadlineScale), head_color, kHeadlineScale);
+  draw_text(img, kOuter + 2, kOuter, fit_text(head, text_w, kHeadlineScale), head_color, kHeadlineScale);
   int y = head_h;
-  for (const auto& l : lines) {
-    draw_text(img, kOuter + 2, y, fit_text(l, W - 2 * kOuter, kTitleScale), pal::kText, kTitleScale);
+  for (const auto& [l, color] : lines) {
+    draw_text(img, kOuter + 2, y, fit_text(l, text_w, kTitleScale), color, kTitleScale);
     y += line_h;
   }
   const int panel_y = y + 2;

@@ -9,6 +9,7 @@
 #include "apps/report/atomic_write.hpp"
 #include "apps/report/biplane_render.hpp"
 #include "apps/report/palette.hpp"
+#include "engine/mesh/load_mesh.hpp"
 #include "inflate.hpp"
 #include "report_scenes.hpp"
 
@@ -220,4 +221,62 @@ TEST_CASE("biplane: example figure of a small tree (written to the build tree fo
   render_biplane_png(s.mesh, s.graph, path.points, s.graph.targets[2], {t},
                      {"synthetic 3-target tree, target 3 (example figure of gw_report)"}, file);
   CHECK(std::filesystem::file_size(file) < 200u * 1024u);
+}
+
+TEST_CASE("biplane: a real anatomy (coronary) renders with its vessel, path and target visible", "[report][biplane][anatomy]") {
+  const std::string dir = std::string(GW_SOURCE_DIR) + "/anatomies/test/coronary/";
+  if (!std::filesystem::exists(dir + "coronary.stl")) {
+    WARN("anatomies/test/coronary is missing: real-anatomy figure not checked");
+    return;
+  }
+  const TriangleMesh mesh = load_mesh(dir + "coronary.stl");
+  const CenterlineGraph graph = read_centerline(dir + "coronary.truth.json");
+  const TargetPath path = plan_path(graph, 3);
+  EpisodeTrace t = test::episode_along(path.points, graph, "success", "reached target 3", 3);
+  t.anatomy = "coronary";
+  t.controller = "illustrative trace";
+  const std::string file = std::string(GW_BINARY_DIR) + "/report_coronary_biplane.png";
+  const std::vector<std::string> title = {"anatomies/test/coronary, target 3: illustrative trace along the planned path "
+                                          "(synthetic, not a simulation)"};
+  render_biplane_png(mesh, graph, path.points, graph.targets[2], {t}, title, file);
+  CHECK(std::filesystem::file_size(file) < 200u * 1024u);
+  const BiplaneRender r = render_biplane(mesh, graph, path.points, graph.targets[2], {t}, title);
+  for (int v = 0; v < 2; ++v) {
+    CAPTURE(v);
+    CHECK(pixel(r, v, graph.targets[2].position) == pal::kTarget);
+    // The vessel tree is a visible silhouette: a fair share of each panel is grey.
+    const ViewProjection& view = r.views[static_cast<std::size_t>(v)];
+    long grey = 0;
+    for (int y = view.panel_origin.y(); y < view.panel_origin.y() + view.panel_size.y(); ++y)
+      for (int x = view.panel_origin.x(); x < view.panel_origin.x() + view.panel_size.x(); ++x)
+        grey += is_grey(r.image.at(x, y)) ? 1 : 0;
+    CHECK(grey > view.panel_size.prod() / 50);
+    // Every other target is inside its panel.
+    for (const Terminal& other : graph.targets) {
+      const Eigen::Vector2d p = view.to_pixel(other.position);
+      CHECK(p.x() > view.panel_origin.x());
+      CHECK(p.x() < view.panel_origin.x() + view.panel_size.x());
+      CHECK(p.y() > view.panel_origin.y());
+      CHECK(p.y() < view.panel_origin.y() + view.panel_size.y());
+    }
+  }
+}
+
+TEST_CASE("biplane: an outcome detail too long for the big headline is wrapped below it in the outcome colour",
+          "[report][biplane]") {
+  const CenterlineGraph graph = test::straight_graph();
+  const auto path = plan_path(graph, 1).points;
+  EpisodeTrace t = test::box_trace();
+  t.outcome = "diverged";
+  auto detail_pixels = [&](const EpisodeTrace& trace) {
+    const BiplaneRender r = render_biplane(test::box_vessel(), graph, path, graph.targets[0], {trace}, {}, fixed_axes());
+    long n = 0;
+    for (int y = 40; y < 66; ++y)  // the line under the scale-3 headline
+      for (int x = 0; x < r.image.width; ++x) n += r.image.at(x, y) == pal::outcome_color("diverged") ? 1 : 0;
+    return n;
+  };
+  t.detail = "NaN";
+  CHECK(detail_pixels(t) == 0);
+  t.detail = "physics diverged: wire point 339 is 0.509521 mm outside the vessel wall (t = 4.640000 s) after 117 steps";
+  CHECK(detail_pixels(t) > 100);
 }

@@ -84,7 +84,10 @@ CenterlineAccuracy compare_centerlines(const CenterlineGraph& ex, const Centerli
   for (const auto& tb : truth.bifurcations) {
     double d = std::numeric_limits<double>::infinity();
     for (const auto& eb : ex.bifurcations) d = std::min(d, (eb.position - tb.position).norm());
-    const double r = nearest_on_truth(truth, tb.position).radius;
+    // "Within one radius" of the vessel that divides: the parent's radius at its end.
+    double r = nearest_on_truth(truth, tb.position).radius;
+    if (tb.parent >= 0 && tb.parent < static_cast<int>(truth.branches.size()) && !truth.branches[tb.parent].radii.empty())
+      r = truth.branches[tb.parent].radii.back();
     a.max_bifurcation_offset = std::max(a.max_bifurcation_offset, r > 0 ? d / r : d);
   }
   a.bifurcations = static_cast<int>(ex.bifurcations.size());

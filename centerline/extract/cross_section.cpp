@@ -49,6 +49,7 @@ CrossSection fit_cross_section(const VesselWall& wall, const Eigen::Vector3d& p,
   for (const auto& h : hits) residual = std::max(residual, std::abs((h - c).norm() - r));
   out.centre = p + c.x() * u + c.y() * v;
   out.radius = r;
+  out.elongation = longest / shortest;
   out.tube = longest < 2.5 * shortest && residual < 0.15 * r;
   if (!out.tube) {
     out.centre = p;

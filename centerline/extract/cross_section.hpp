@@ -3,6 +3,7 @@
 // rays cast in that plane hit the wall; a circle fitted to the hits gives the true
 // centre (the skeleton sits off-axis) and the radius.
 #include <Eigen/Core>
+#include <limits>
 
 #include "centerline/extract/vessel_wall.hpp"
 
@@ -13,6 +14,9 @@ struct CrossSection {
                       // bifurcations and caps, where the plane cuts more than a tube)
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // fitted centre, in the plane
   double radius = 0.0;                               // fitted radius
+  // Longest / shortest ray when all rays hit (+inf otherwise): 1 for a ray origin on
+  // the axis of a round tube; clean junction-free sections stay close to 1.
+  double elongation = std::numeric_limits<double>::infinity();
 };
 
 // Casts `rays` rays from `p` in the plane normal to the unit `tangent`, up to

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "centerline/extract/junction_centre.hpp"
 #include "centerline/extract/mcf_skeleton.hpp"
 #include "centerline/extract/prepare_surface.hpp"
 #include "centerline/extract/refine_branch.hpp"
@@ -83,6 +84,8 @@ CenterlineGraph extract_centerline(const TriangleMesh& mesh, const CenterlineOpt
   std::vector<RefinedBranch> refined;
   for (const auto& c : tree.chains)
     refined.push_back(refine_branch(c.points, degree[c.a] == 1, degree[c.b] == 1, wall, refinement));
+  std::vector<Eigen::Vector3d> nodes = tree.nodes;
+  recentre_junctions(tree, nodes, refined, opt.spacing);
 
   // 5. Inlet: the terminal nearest the given point, else the one on the widest branch
   // (ties: lowest x, y, z, so the choice is deterministic).
@@ -132,7 +135,7 @@ CenterlineGraph extract_centerline(const TriangleMesh& mesh, const CenterlineOpt
         if (bifurcation_of[v] < 0) {
           Bifurcation b;
           b.id = static_cast<int>(g.bifurcations.size());
-          b.position = tree.nodes[v];
+          b.position = nodes[v];
           b.parent = branch.parent;
           bifurcation_of[v] = b.id;
           g.bifurcations.push_back(b);

@@ -1,5 +1,6 @@
 #include "centerline/extract/mcf_skeleton.hpp"
 
+#include <CGAL/Random.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/extract_mean_curvature_flow_skeleton.h>
@@ -23,6 +24,11 @@ RawSkeleton mcf_skeleton(const TriangleMesh& closed) {
       throw std::runtime_error("skeletonisation input is not a 2-manifold (face " + std::to_string(f) + ")");
   if (!CGAL::is_closed(sm)) throw std::runtime_error("skeletonisation input is not closed");
 
+  // The flow's Voronoi poles come from a Delaunay triangulation whose insertion order is
+  // shuffled with CGAL's global random generator; on symmetric (co-spherical) inputs the
+  // result depends on that order. Reseed so one mesh always gives one skeleton, whatever
+  // ran before in the process.
+  CGAL::get_default_random() = CGAL::Random(0);
   Skeletonization::Skeleton skeleton;
   Skeletonization mcf(sm);
   mcf.contract_until_convergence();

@@ -8,8 +8,13 @@
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
+#include <CGAL/Random.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Edge_length_cost.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Edge_length_stop_predicate.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Midpoint_placement.h>
+#include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 
 #include <array>
 #include <iterator>
@@ -26,7 +31,30 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 
 Eigen::Vector3d to_eigen(const Point& p) { return {p.x(), p.y(), p.z()}; }
 
+// Direct halfedge construction; false when a face would make the mesh non-manifold or
+// repeats an index (the soup path below then repairs it).
+bool build_directly(const TriangleMesh& mesh, SMesh& sm) {
+  std::vector<SMesh::Vertex_index> vertex;
+  vertex.reserve(static_cast<size_t>(mesh.V.rows()));
+  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i)
+    vertex.push_back(sm.add_vertex(Point(mesh.V(i, 0), mesh.V(i, 1), mesh.V(i, 2))));
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    const int a = mesh.F(f, 0), b = mesh.F(f, 1), c = mesh.F(f, 2);
+    const int n = static_cast<int>(mesh.V.rows());
+    if (a < 0 || b < 0 || c < 0 || a >= n || b >= n || c >= n || a == b || b == c || a == c) return false;
+    if (sm.add_face(vertex[a], vertex[b], vertex[c]) == SMesh::null_face()) return false;
+  }
+  // Isolated vertices would make later steps fail; a clean surface has none.
+  for (auto v : sm.vertices())
+    if (sm.is_isolated(v)) return false;
+  return true;
+}
+
 SMesh to_surface_mesh(const TriangleMesh& mesh) {
+  {
+    SMesh sm;
+    if (build_directly(mesh, sm)) return sm;
+  }
   std::vector<Point> points;
   std::vector<std::array<std::size_t, 3>> faces;
   points.reserve(static_cast<size_t>(mesh.V.rows()));
@@ -128,8 +156,21 @@ ClosedSurface close_surface(const TriangleMesh& mesh) {
 
 TriangleMesh remesh_surface(const TriangleMesh& closed, double edge_length, int iterations) {
   if (!(edge_length > 0)) throw std::runtime_error("remeshing needs a positive edge length");
+  CGAL::get_default_random() = CGAL::Random(0);  // deterministic output, whatever ran before
   SMesh sm = to_surface_mesh(closed);
-  PMP::isotropic_remeshing(faces(sm), edge_length, sm, PMP::parameters::number_of_iterations(iterations));
+  // A dense input (segmentations and generated anatomies come at a fraction of the
+  // radius per edge) is first decimated by shortest-edge collapse, which is far cheaper
+  // per removed edge than the remesher's collapse pass; the remesher then evens it out.
+  namespace SMS = CGAL::Surface_mesh_simplification;
+  SMS::edge_collapse(sm, SMS::Edge_length_stop_predicate<double>(0.5 * edge_length),
+                     CGAL::parameters::get_cost(SMS::Edge_length_cost<SMesh>())
+                         .get_placement(SMS::Midpoint_placement<SMesh>()));
+  sm.collect_garbage();
+  // No projection back onto the input: it costs an AABB query per vertex per pass on
+  // the (possibly dense) input, and MCF needs the shape, not sub-edge fidelity; every
+  // measurement afterwards is taken on the original wall.
+  PMP::isotropic_remeshing(faces(sm), edge_length, sm,
+                           PMP::parameters::number_of_iterations(iterations).do_project(false));
   sm.collect_garbage();
   return to_triangle_mesh(sm);
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "centerline/extract/cross_section.hpp"
 #include "centerline/extract/polyline_tools.hpp"
@@ -12,14 +13,16 @@ namespace {
 
 // Per point: fitted radius where the cross-section is a tube, else NaN.
 std::vector<double> tube_radii(const std::vector<Eigen::Vector3d>& p, const VesselWall& wall, int rays,
-                               std::vector<Eigen::Vector3d>* centres) {
+                               std::vector<Eigen::Vector3d>* centres, std::vector<double>* elongation = nullptr) {
   const auto tangent = polyline_tangents(smooth_polyline(p, 4));
   std::vector<double> r(p.size(), std::nan(""));
   if (centres) *centres = p;
+  if (elongation) elongation->assign(p.size(), std::numeric_limits<double>::infinity());
   for (size_t i = 0; i < p.size(); ++i) {
     const double near = wall.distance(p[i]);
     const CrossSection cs = fit_cross_section(wall, p[i], tangent[i], 4.0 * near + 1e-9, rays);
     if (!cs.tube) continue;
+    if (elongation) (*elongation)[i] = cs.elongation;
     r[i] = cs.radius;
     if (centres) (*centres)[i] = cs.centre;
   }
@@ -93,7 +96,7 @@ RefinedBranch refine_branch(const std::vector<Eigen::Vector3d>& chain, bool free
   }
   extend_free_ends();
   p = resample_polyline(smooth_polyline(p, o.smoothing_iterations), o.spacing);
-  r = tube_radii(p, wall, o.rays, nullptr);
+  r = tube_radii(p, wall, o.rays, nullptr, &out.elongation);
   // Fill non-tube sections (bifurcations, caps) by interpolating along the branch
   // between tube sections; a branch with no tube section keeps the wall distance.
   std::vector<double> s(p.size(), 0.0);

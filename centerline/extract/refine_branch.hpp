@@ -17,6 +17,7 @@ struct BranchRefinement {
 struct RefinedBranch {
   std::vector<Eigen::Vector3d> points;
   std::vector<double> radii;
+  std::vector<double> elongation;  // per point: CrossSection::elongation (inf: not a tube)
 };
 
 // `chain` runs from its first to its last point. Interior points are moved onto the

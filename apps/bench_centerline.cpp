@@ -1,0 +1,79 @@
+// bench-centerline: time and accuracy of centerline extraction on every anatomy of the
+// committed set (anatomies/index.json) against its ground truth. Prints ONE JSON object.
+//   bench-centerline [--index anatomies/index.json] [--root DIR] [--only NAME] [--repeat 3] [--vmtk results.json]
+// Times are per extraction (mesh already loaded, no cache): the median wall time and the
+// CPU time of the same run (the machine may be shared; CPU time is the steadier figure).
+// --vmtk merges per-anatomy results of training/guidewire_nav/vmtk_centerline.py.
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "centerline/extract/anatomy_index.hpp"
+#include "centerline/extract/compare_centerlines.hpp"
+#include "centerline/extract/extract_centerline.hpp"
+#include "engine/mesh/load_mesh.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"Benchmark centerline extraction against the anatomies' ground truth (one JSON object)"};
+  std::string index = "anatomies/index.json", root, vmtk, only;
+  int repeat = 3;
+  app.add_option("--index", index, "anatomy index");
+  app.add_option("--root", root, "folder the index's paths are relative to (default: the index's parent folder's parent)");
+  app.add_option("--only", only, "benchmark only the anatomy with this name");
+  app.add_option("--repeat", repeat, "extractions per anatomy (median time reported)")->check(CLI::Range(1, 100));
+  app.add_option("--vmtk", vmtk, "JSON from vmtk_centerline.py to report side by side");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    nlohmann::json vmtk_results = nlohmann::json::object();
+    if (!vmtk.empty()) {
+      std::ifstream in(vmtk);
+      if (!in) throw std::runtime_error(vmtk + ": cannot open");
+      vmtk_results = nlohmann::json::parse(in);
+    }
+    nlohmann::json out;
+    out["benchmark"] = "centerline";
+    out["hardware_threads"] = std::thread::hardware_concurrency();
+    out["anatomies"] = nlohmann::json::array();
+    for (const auto& a : gw::read_anatomy_index(index, root)) {
+      if (!only.empty() && a.name != only) continue;
+      const gw::TriangleMesh mesh = gw::load_valid_mesh(a.mesh);
+      const gw::CenterlineGraph truth = gw::read_centerline(a.truth);
+      gw::CenterlineOptions options;
+      options.inlet = truth.inlet.position;
+      std::vector<std::pair<double, double>> times;  // wall, cpu
+      gw::CenterlineGraph graph;
+      gw::CenterlineStats stats;
+      for (int r = 0; r < repeat; ++r) {
+        const auto w0 = std::chrono::steady_clock::now();
+        const std::clock_t c0 = std::clock();
+        graph = gw::extract_centerline(mesh, options, &stats);
+        times.emplace_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count(),
+                           double(std::clock() - c0) / CLOCKS_PER_SEC);
+      }
+      std::sort(times.begin(), times.end());
+      const auto median = times[times.size() / 2];
+      nlohmann::json row = {{"name", a.name},
+                            {"set", a.set},
+                            {"faces", stats.input_faces},
+                            {"mcf_faces", stats.skeleton_faces},
+                            {"seconds_wall", median.first},
+                            {"seconds_cpu", median.second},
+                            {"seconds_prepare", stats.seconds_prepare},
+                            {"seconds_skeleton", stats.seconds_skeleton},
+                            {"seconds_graph", stats.seconds_graph},
+                            {"accuracy", nlohmann::json::parse(gw::accuracy_to_json(gw::compare_centerlines(graph, truth)))}};
+      if (vmtk_results.contains(a.name)) row["vmtk"] = vmtk_results[a.name];
+      out["anatomies"].push_back(row);
+    }
+    std::cout << out.dump(1) << "\n";
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,136 @@
+#include "centerline/extract/junction_centre.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace gw {
+namespace {
+
+// A branch seen from the junction: its points and radii running away from it.
+struct Arm {
+  size_t chain = 0;
+  bool reversed = false;
+  std::vector<Eigen::Vector3d> points;
+  std::vector<double> radii;
+  std::vector<double> elongation;
+};
+
+Arm arm_of(const RefinedBranch& b, size_t chain, bool reversed) {
+  Arm a{chain, reversed, b.points, b.radii, b.elongation};
+  a.elongation.resize(a.points.size(), std::numeric_limits<double>::infinity());
+  if (reversed) {
+    std::reverse(a.points.begin(), a.points.end());
+    std::reverse(a.radii.begin(), a.radii.end());
+    std::reverse(a.elongation.begin(), a.elongation.end());
+  }
+  return a;
+}
+
+// Arc length from the junction to where the arm becomes a clean round tube (three
+// sections in a row with elongation < 1.3, at least half a radius out): the vessels
+// of a shallow-angle bifurcation share one lumen for several radii, and lines fitted
+// inside it would follow the merged lumen, not either axis. -1 when there is none in
+// the first 60% of the arm.
+double clean_start(const Arm& a, const std::vector<double>& s, double r) {
+  for (size_t i = 0; i + 2 < a.points.size() && s[i] <= 0.6 * s.back(); ++i) {
+    if (s[i] < 0.5 * r) continue;
+    if (a.elongation[i] < 1.3 && a.elongation[i + 1] < 1.3 && a.elongation[i + 2] < 1.3) return s[i];
+  }
+  return -1.0;
+}
+
+}  // namespace
+
+void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& nodes,
+                        std::vector<RefinedBranch>& branches, double spacing, double max_shift) {
+  const std::vector<int> degree = tree.degree();
+  for (size_t v = 0; v < tree.nodes.size(); ++v) {
+    if (degree[v] < 3) continue;
+    std::vector<Arm> arms;
+    for (size_t i = 0; i < tree.chains.size(); ++i) {
+      if (tree.chains[i].a == static_cast<int>(v)) arms.push_back(arm_of(branches[i], i, false));
+      if (tree.chains[i].b == static_cast<int>(v) && tree.chains[i].a != static_cast<int>(v))
+        arms.push_back(arm_of(branches[i], i, true));
+    }
+    // One line per arm, fitted over about two radii where the arm becomes a clean tube
+    // (or over [1.5 r, 3.5 r] when it never does).
+    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+    std::vector<double> cut(arms.size(), 0.0);
+    double widest = 0.0;
+    bool ok = true;
+    for (size_t k = 0; k < arms.size() && ok; ++k) {
+      const auto& p = arms[k].points;
+      std::vector<double> s(p.size(), 0.0);
+      for (size_t i = 1; i < p.size(); ++i) s[i] = s[i - 1] + (p[i] - p[i - 1]).norm();
+      std::vector<double> near(arms[k].radii.begin(),
+                               arms[k].radii.begin() + std::min<long>(static_cast<long>(p.size()), 16));
+      std::sort(near.begin(), near.end());
+      const double r = near[near.size() / 2];
+      widest = std::max(widest, r);
+      double s0 = clean_start(arms[k], s, r), s1 = s0 + 2.0 * r;
+      if (s0 < 0) s0 = std::min(1.5 * r, 0.3 * s.back()), s1 = std::min(3.5 * r, 0.6 * s.back());
+      s1 = std::min(s1, 0.8 * s.back());
+      cut[k] = s0;
+      std::vector<Eigen::Vector3d> window;
+      for (size_t i = 0; i < p.size(); ++i)
+        if (s[i] >= s0 && s[i] <= s1) window.push_back(p[i]);
+      if (window.size() < 2 || !(r > 0)) {
+        ok = false;
+        break;
+      }
+      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+      for (const auto& q : window) mean += q;
+      mean /= double(window.size());
+      Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+      for (const auto& q : window) cov += (q - mean) * (q - mean).transpose();
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+      const Eigen::Vector3d d = eig.eigenvectors().col(2);
+      const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - d * d.transpose();
+      A += P;
+      rhs += P * mean;
+    }
+    if (!ok) continue;
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> check(A);
+    if (check.eigenvalues().minCoeff() < 0.05 * check.eigenvalues().maxCoeff()) continue;  // lines (nearly) parallel
+    const Eigen::Vector3d centre = A.ldlt().solve(rhs);
+    if (!centre.allFinite() || (centre - nodes[v]).norm() > max_shift * widest) continue;
+    nodes[v] = centre;
+    // Re-attach: drop each arm's first `cut` of length, run straight from the centre.
+    for (size_t k = 0; k < arms.size(); ++k) {
+      Arm& a = arms[k];
+      size_t first = 0;
+      double s = 0.0;
+      while (first + 1 < a.points.size() && s < cut[k]) {
+        s += (a.points[first + 1] - a.points[first]).norm();
+        ++first;
+      }
+      std::vector<Eigen::Vector3d> pts{centre};
+      std::vector<double> rad{a.radii[first]};
+      std::vector<double> elong{std::numeric_limits<double>::infinity()};
+      const Eigen::Vector3d target = a.points[first];
+      const int steps = std::max(1, static_cast<int>(std::round((target - centre).norm() / spacing)));
+      for (int j = 1; j < steps; ++j) {
+        pts.push_back(centre + (target - centre) * (double(j) / steps));
+        rad.push_back(a.radii[first]);
+        elong.push_back(std::numeric_limits<double>::infinity());
+      }
+      pts.insert(pts.end(), a.points.begin() + static_cast<long>(first), a.points.end());
+      rad.insert(rad.end(), a.radii.begin() + static_cast<long>(first), a.radii.end());
+      elong.insert(elong.end(), a.elongation.begin() + static_cast<long>(first), a.elongation.end());
+      if (a.reversed) {
+        std::reverse(pts.begin(), pts.end());
+        std::reverse(rad.begin(), rad.end());
+        std::reverse(elong.begin(), elong.end());
+      }
+      branches[a.chain].elongation = std::move(elong);
+      branches[a.chain].points = std::move(pts);
+      branches[a.chain].radii = std::move(rad);
+    }
+  }
+}
+
+}  // namespace gw

@@ -207,3 +207,20 @@ TEST_CASE("VTP writers refuse bad input and unwritable paths without leaving fil
   CHECK_THROWS_WITH(write_trace_vtp(test::box_trace(), unwritable), Contains(unwritable));
   CHECK(fs::is_empty(dir));
 }
+
+TEST_CASE("trace VTP of an episode that diverged at once (no finite tip, no wire) is still valid", "[report][vtp]") {
+  EpisodeTrace t;
+  t.outcome = "diverged";
+  t.detail = "NaN at the first step";
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  t.time_s = {0.0, 0.01};
+  t.tip = {Eigen::Vector3d::Constant(nan), Eigen::Vector3d::Constant(nan)};
+  t.action = {nan, nan};
+  t.agent_in_control = {false, true};
+  const std::string path = test::scratch_dir("vtp_empty") + "/episode.vtp";
+  write_trace_vtp(t, path);
+  const Vtp v = parse_vtp(path);
+  CHECK(v.number("NumberOfPoints") == 0);
+  CHECK(v.number("NumberOfLines") == 1);
+  check_consistent(v);
+}

@@ -41,15 +41,15 @@ bool near_a_bifurcation(const TaskConfig& c, const Course& course, const Eigen::
   return false;
 }
 
-// Tip far enough along a wrong child and closer to it than to the correct continuation.
-bool in_wrong_branch(const TaskConfig& c, const Anatomy& anatomy, const Course& course, const Eigen::Vector3d& tip) {
+// Tip far enough along a wrong child and closer to it than to any part of the course. (Comparing
+// with the whole course, not just the continuation past the bifurcation, matters where a wrong
+// child bends back towards the access vessel, e.g. an S-shaped pattern.)
+bool in_wrong_branch(const TaskConfig& c, const Anatomy& anatomy, const Course& course, const Eigen::Vector3d& tip,
+                     double course_distance) {
   for (const CourseBifurcation& b : course.bifurcations) {
-    double correct_distance = -1.0;  // computed on demand
     for (int w : b.wrong_branches) {
       const PolylineProjection pw = project_onto_polyline(anatomy.branch_lines[static_cast<size_t>(w)], tip);
-      if (pw.arc < c.wrong_branch_depth_mm) continue;
-      if (correct_distance < 0) correct_distance = project_onto_polyline(course.line, tip, b.first_segment).distance;
-      if (pw.distance < correct_distance) return true;
+      if (pw.arc >= c.wrong_branch_depth_mm && pw.distance < course_distance) return true;
     }
   }
   return false;
@@ -70,7 +70,10 @@ void observe(const NavigationTask& task, EpisodeState& s, bool first) {
   double tip_arc = 0.0;
   for (int i = 0; i < kThetaCount; ++i) {
     const PolylineProjection p = project_onto_polyline(course.line, s.samples.position[i]);
-    if (i == 0) tip_arc = p.arc;
+    if (i == 0) {
+      tip_arc = p.arc;
+      s.course_distance_mm = p.distance;
+    }
     const Eigen::Vector3d ci = polyline_tangent(course.line, p.arc + c.lookahead_mm);
     o[obs_index::kTheta + i] = std::clamp(s.samples.tangent[i].dot(ci), -1.0, 1.0);
   }
@@ -226,7 +229,7 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, double act
   out.info = episode_info(task, s);
   out.info.contacts = contacts;
   out.info.success = out.info.tip_to_target_mm <= c.success_radius_mm;
-  out.info.wrong_branch = !out.info.success && in_wrong_branch(c, anatomy, *s.course, s.tip);
+  out.info.wrong_branch = !out.info.success && in_wrong_branch(c, anatomy, *s.course, s.tip, s.course_distance_mm);
   out.terminated = out.info.success || out.info.wrong_branch;
   if (!out.terminated) {
     out.info.step_limit = s.steps >= s.max_steps;

@@ -27,6 +27,7 @@ struct EpisodeState {
   double lambda0_mm = 1.0;         // lambda when the current goal became current
   double lambda_mm = 0.0;          // tip-to-goal distance along the centerline
   double progress_mm = 0.0;        // arc length of the tip's projection on the course
+  double course_distance_mm = 0.0; // distance from the tip to the course centerline
   double best_progress_mm = 0.0;   // for the stuck test
   int best_progress_step = 0;
   Eigen::Vector3d tip = Eigen::Vector3d::Zero();

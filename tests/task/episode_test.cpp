@@ -156,3 +156,17 @@ TEST_CASE("a time limit cuts a step off and ends the episode", "[task][episode]"
   CHECK_THAT(out.info.problem, Catch::Contains("time limit"));
   CHECK(s.done);
 }
+
+TEST_CASE("a wrong child bending back beside the access vessel is not 'entered' from the inlet", "[task][episode]") {
+  const gw::CenterlineGraph g = gwtest::hook_graph();
+  const gw::NavigationTask task = free_space_task(g);
+  for (int target = 1; target <= 2; ++target) {
+    gw::EpisodeState s = gw::reset_episode(task, 0, target, 4);
+    for (int k = 0; k < 40; ++k) {  // 16 mm up the access vessel, the hook 12 mm away,
+                                    // the continuation past the bifurcation >= 24 mm away
+      const gw::StepOutcome out = gw::step_episode(task, s, 0.0);
+      REQUIRE_FALSE(out.info.wrong_branch);
+      REQUIRE_FALSE(out.terminated);
+    }
+  }
+}

@@ -74,4 +74,29 @@ inline gw::CenterlineGraph two_level_tree() {
   return g;
 }
 
+// Root along +y (40 mm); child 1 continues along +y; child 2 hooks back: out along +x, then down
+// to pass 12 mm beside the inlet (the S-shaped training pattern in the extreme).
+inline gw::CenterlineGraph hook_graph() {
+  gw::CenterlineGraph g;
+  const Eigen::Vector3d o(0, 0, 0), c(0, 40, 0);
+  g.inlet.position = o;
+  g.inlet.branch = 0;
+  g.inlet.radius = 2.0;
+  g.inlet_direction = Eigen::Vector3d::UnitY();
+  g.branches.push_back(branch(0, -1, segment(o, c)));
+  g.branches.push_back(branch(1, 0, segment(c, c + Eigen::Vector3d(0, 45, 0))));
+  std::vector<Eigen::Vector3d> hook = segment(c, Eigen::Vector3d(12, 44, 0));
+  const std::vector<Eigen::Vector3d> down = segment(Eigen::Vector3d(12, 44, 0), Eigen::Vector3d(12, 2, 0));
+  hook.insert(hook.end(), down.begin() + 1, down.end());
+  g.branches.push_back(branch(2, 0, hook));
+  gw::Bifurcation b;
+  b.id = 0;
+  b.position = c;
+  b.parent = 0;
+  b.children = {1, 2};
+  g.bifurcations.push_back(b);
+  gw::number_targets(g);
+  return g;
+}
+
 }  // namespace gwtest

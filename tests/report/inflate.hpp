@@ -87,8 +87,11 @@ inline Inflated zlib_inflate(const std::vector<std::uint8_t>& z) {
     if (type == 0) {
       ++out.stored_blocks;
       r.align();
-      const unsigned len = r.byte() | (r.byte() << 8);
-      const unsigned nlen = r.byte() | (r.byte() << 8);
+      // One read per statement: the operands of | are evaluated in unspecified order.
+      unsigned len = r.byte();
+      len |= static_cast<unsigned>(r.byte()) << 8;
+      unsigned nlen = r.byte();
+      nlen |= static_cast<unsigned>(r.byte()) << 8;
       if ((len ^ 0xFFFFu) != nlen) throw std::runtime_error("zlib: stored LEN/NLEN mismatch");
       for (unsigned i = 0; i < len; ++i) out.data.push_back(r.byte());
     } else if (type == 1) {

@@ -1,0 +1,158 @@
+"""Lower anchors for RL on the navigation task: push-only and a scripted omega controller.
+
+    python -m guidewire_nav.baselines --episodes 20 --workers 2      # prints one JSON object
+
+Both run through GuidewireEnv (one local server per worker), on the training anatomies by default,
+targets and start poses drawn from the episode seeds, so the numbers are reproducible.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import multiprocessing as mp
+from collections import defaultdict
+
+import numpy as np
+
+from guidewire_nav.env import GuidewireEnv
+
+OMEGA = 9  # observation index, layout guidewire-nav/obs/1
+
+
+class PushOnly:
+    """Never rotates: whatever the random start roll gives."""
+
+    name = "push_only"
+
+    def reset(self) -> None:
+        pass
+
+    def __call__(self, obs: np.ndarray) -> float:
+        return 0.0
+
+
+class OmegaController:
+    """Rotates until the tip bends away from the wrong branch (omega low), then holds.
+
+    omega = k_p . w_p is +1 when the tip bends towards the wrong branch and -1 when it bends away. The
+    controller turns while omega is above `threshold`, at a rate proportional to the excess, and
+    reverses when omega grew since the last step despite turning (the shorter way round, and the
+    proximal-to-tip torsional lag makes omega respond late)."""
+
+    name = "omega_scripted"
+
+    def __init__(self, threshold: float = -0.6, gain: float = 1.5):
+        self.threshold, self.gain = threshold, gain
+        self.reset()
+
+    def reset(self) -> None:
+        self.direction = 1.0
+        self.previous: float | None = None
+        self.last_action = 0.0
+
+    def __call__(self, obs: np.ndarray) -> float:
+        omega = float(obs[OMEGA])
+        if self.previous is not None and self.last_action != 0.0 and omega > self.previous + 0.02:
+            self.direction = -self.direction
+        self.previous = omega
+        excess = omega - self.threshold
+        action = 0.0 if excess <= 0 else self.direction * min(1.0, self.gain * excess)
+        self.last_action = action
+        return action
+
+
+CONTROLLERS = {"push_only": PushOnly, "omega_scripted": OmegaController}
+
+
+def run_episodes(controller_name: str, anatomy: str, seeds: list[int], env_kwargs: dict) -> list[dict]:
+    """Runs one episode per seed on `anatomy`; returns the final info of each (plus return and steps)."""
+    controller = CONTROLLERS[controller_name]()
+    env = GuidewireEnv(**env_kwargs)
+    results = []
+    try:
+        for seed in seeds:
+            obs, info = env.reset(seed=seed, options={"anatomy": anatomy})
+            controller.reset()
+            total, steps, done = 0.0, 0, False
+            while not done:
+                obs, reward, terminated, truncated, info = env.step(np.array([controller(obs)], dtype=np.float32))
+                total += reward
+                steps += 1
+                done = terminated or truncated
+            results.append(
+                {
+                    "anatomy": anatomy,
+                    "target": info["target"],
+                    "seed": seed,
+                    "success": bool(info["success"]),
+                    "wrong_branch": bool(info["wrong_branch"]),
+                    "stuck": bool(info["stuck"]),
+                    "step_limit": bool(info["step_limit"]),
+                    "problem": info.get("problem", ""),
+                    "steps": steps,
+                    "return": total,
+                }
+            )
+    finally:
+        env.close()
+    return results
+
+
+def _job(args):
+    return run_episodes(*args)
+
+
+def evaluate(controllers, anatomies, episodes: int, seed: int, workers: int, env_kwargs: dict) -> dict:
+    jobs = [
+        (c, a, [seed + 1000 * i + k for k in range(episodes)], env_kwargs)
+        for c in controllers
+        for i, a in enumerate(anatomies)
+    ]
+    if workers > 1:
+        with mp.get_context("spawn").Pool(workers) as pool:
+            chunks = pool.map(_job, jobs)
+    else:
+        chunks = [_job(j) for j in jobs]
+    summary: dict = {"episodes_per_anatomy": episodes, "seed": seed, "controllers": {}}
+    for (c, a, _, _), results in zip(jobs, chunks):
+        entry = summary["controllers"].setdefault(c, {"per_anatomy": {}, "episodes": 0, "successes": 0})
+        counts = defaultdict(int)
+        for r in results:
+            counts["successes"] += r["success"]
+            counts["wrong_branch"] += r["wrong_branch"]
+            counts["stuck"] += r["stuck"]
+            counts["step_limit"] += r["step_limit"]
+            counts["physics_problem"] += bool(r["problem"])
+        entry["per_anatomy"][a] = {
+            "episodes": len(results),
+            "success_rate": counts["successes"] / len(results),
+            **dict(counts),
+            "mean_return": float(np.mean([r["return"] for r in results])),
+            "mean_steps": float(np.mean([r["steps"] for r in results])),
+        }
+        entry["episodes"] += len(results)
+        entry["successes"] += counts["successes"]
+    for entry in summary["controllers"].values():
+        entry["success_rate"] = entry["successes"] / max(1, entry["episodes"])
+    return summary
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--anatomies", default="t1_straight_y,t2_curved_straight_exit,t3_out_of_plane_steep,t4_s_curving_back")
+    p.add_argument("--controllers", default="push_only,omega_scripted")
+    p.add_argument("--episodes", type=int, default=20, help="episodes per anatomy and controller")
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--workers", type=int, default=2, help="parallel processes, one server each")
+    p.add_argument("--host", default=None, help="use a running server instead of starting one per worker")
+    p.add_argument("--port", type=int, default=None)
+    args = p.parse_args()
+    anatomies = [a for a in args.anatomies.split(",") if a]
+    env_kwargs = {"anatomies": ",".join(anatomies)} if args.port is None else {"host": args.host, "port": args.port}
+    summary = evaluate(args.controllers.split(","), anatomies, args.episodes, args.seed, args.workers, env_kwargs)
+    print(json.dumps(summary))
+
+
+if __name__ == "__main__":
+    main()

@@ -15,7 +15,6 @@ CrossSection fit_cross_section(const VesselWall& wall, const Eigen::Vector3d& p,
   const Eigen::Vector3d t = tangent.normalized();
   const Eigen::Vector3d u = t.unitOrthogonal(), v = t.cross(u);
   std::vector<Eigen::Vector2d> hits;
-  double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
   for (int k = 0; k < rays; ++k) {
     const double a = 2.0 * M_PI * k / rays;
     const Eigen::Vector2d dir(std::cos(a), std::sin(a));
@@ -24,8 +23,6 @@ CrossSection fit_cross_section(const VesselWall& wall, const Eigen::Vector3d& p,
       out.radius = wall.distance(p);
       return out;
     }
-    shortest = std::min(shortest, d);
-    longest = std::max(longest, d);
     hits.push_back(d * dir);
   }
   // Kasa circle fit: x^2 + y^2 + D x + E y + F = 0 in least squares, through the 3x3
@@ -45,12 +42,19 @@ CrossSection fit_cross_section(const VesselWall& wall, const Eigen::Vector3d& p,
     return out;
   }
   const double r = std::sqrt(r2);
-  double residual = 0.0;
-  for (const auto& h : hits) residual = std::max(residual, std::abs((h - c).norm() - r));
+  double residual = 0.0, nearest = std::numeric_limits<double>::infinity(), farthest = 0.0;
+  for (const auto& h : hits) {
+    const double d = (h - c).norm();
+    residual = std::max(residual, std::abs(d - r));
+    nearest = std::min(nearest, d);
+    farthest = std::max(farthest, d);
+  }
   out.centre = p + c.x() * u + c.y() * v;
   out.radius = r;
-  out.elongation = longest / shortest;
-  out.tube = longest < 2.5 * shortest && residual < 0.15 * r;
+  // Judged from the fitted centre, not from `p`: a point far off-axis in a round tube
+  // still sees a round section, which is exactly what re-centring must fix.
+  out.elongation = nearest > 0 ? farthest / nearest : std::numeric_limits<double>::infinity();
+  out.tube = out.elongation < 1.4 && residual < 0.1 * r;
   if (!out.tube) {
     out.centre = p;
     out.radius = wall.distance(p);

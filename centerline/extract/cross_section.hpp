@@ -14,15 +14,15 @@ struct CrossSection {
                       // bifurcations and caps, where the plane cuts more than a tube)
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // fitted centre, in the plane
   double radius = 0.0;                               // fitted radius
-  // Longest / shortest ray when all rays hit (+inf otherwise): 1 for a ray origin on
-  // the axis of a round tube; clean junction-free sections stay close to 1.
+  // Farthest / nearest hit seen from the fitted centre (+inf when a ray misses): 1 for
+  // a round tube whatever the ray origin; clean junction-free sections stay close to 1.
   double elongation = std::numeric_limits<double>::infinity();
 };
 
 // Casts `rays` rays from `p` in the plane normal to the unit `tangent`, up to
 // `max_length` (about 3 radii), and fits a circle to the hits (Kasa fit). `tube` is
-// false when a ray misses, the lumen is elongated (longest/shortest hit > 2.5), or the
-// hits stray more than 15% of the radius from the circle.
+// false when a ray misses, the lumen is elongated (elongation >= 1.4), or the hits
+// stray more than 10% of the radius from the circle.
 CrossSection fit_cross_section(const VesselWall& wall, const Eigen::Vector3d& p, const Eigen::Vector3d& tangent,
                                double max_length, int rays = 24);
 

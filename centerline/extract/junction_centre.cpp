@@ -30,14 +30,15 @@ Arm arm_of(const RefinedBranch& b, size_t chain, bool reversed) {
 }
 
 // Arc length from the junction to where the arm becomes a clean round tube (three
-// sections in a row with elongation < 1.3, at least half a radius out): the vessels
+// sections in a row with elongation < 1.12, at least half a radius out): the vessels
 // of a shallow-angle bifurcation share one lumen for several radii, and lines fitted
 // inside it would follow the merged lumen, not either axis. -1 when there is none in
 // the first 60% of the arm.
 double clean_start(const Arm& a, const std::vector<double>& s, double r) {
+  constexpr double kClean = 1.12;
   for (size_t i = 0; i + 2 < a.points.size() && s[i] <= 0.6 * s.back(); ++i) {
     if (s[i] < 0.5 * r) continue;
-    if (a.elongation[i] < 1.3 && a.elongation[i + 1] < 1.3 && a.elongation[i + 2] < 1.3) return s[i];
+    if (a.elongation[i] < kClean && a.elongation[i + 1] < kClean && a.elongation[i + 2] < kClean) return s[i];
   }
   return -1.0;
 }

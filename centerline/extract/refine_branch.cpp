@@ -50,9 +50,9 @@ bool extend_end_to_wall(std::vector<Eigen::Vector3d>& p, const std::vector<doubl
   if (back == last) back = last - 1;
   const Eigen::Vector3d dir = (p[last] - p[back]).normalized();
   const double reach = wall.ray_hit(p[last], dir);
-  // Never run further than a few radii: a ray escaping down a long lumen means the
+  // Never run further than six radii: a ray escaping down a long lumen means the
   // skeleton already reached the end (a rounded tip) or the direction is off.
-  const double limit = std::max(3.0 * radius[last], 2.0 * (p.back() - p[last]).norm());
+  const double limit = std::max(6.0 * radius[last], 2.0 * (p.back() - p[last]).norm());
   if (!(reach < limit)) return false;
   p.resize(static_cast<size_t>(last) + 1);
   const int steps = std::max(1, static_cast<int>(std::ceil(reach / spacing)));

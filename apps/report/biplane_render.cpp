@@ -175,7 +175,20 @@ std::vector<Eigen::Vector2d> project(const ViewProjection& view, const std::vect
   return out;
 }
 
+void draw_final_wires(Image& panel, const ViewProjection& view, const PanelInput& in) {
+  if (!in.options.draw_final_wire) return;
+  for (const EpisodeTrace& t : in.traces)
+    if (!t.wire_shapes.empty()) {
+      const auto px = project(view, t.wire_shapes.back());
+      for (std::size_t i = 1; i < px.size(); ++i) draw_segment(panel, px[i - 1], px[i], 2.0, pal::kWire);
+    }
+}
+
 void draw_traces(Image& panel, const ViewProjection& view, const PanelInput& in) {
+  // One episode: its final wire on top of its trace (the trace shows on both sides of it).
+  // Several: the wires underneath, or they would hide every trace where they overlap.
+  const bool batch = in.traces.size() > 1;
+  if (batch) draw_final_wires(panel, view, in);
   for (const EpisodeTrace& t : in.traces) {
     Eigen::Vector2d prev;
     bool have_prev = false;
@@ -189,18 +202,14 @@ void draw_traces(Image& panel, const ViewProjection& view, const PanelInput& in)
                     : t.agent_in_control[i]                    ? pal::kTipAgent
                                                                : pal::kTipPush;
       // 5 px under the 2 px final wire: the colour stays visible on both sides of it.
-      if (have_prev) draw_segment(panel, prev, p, 5.0, c);
-      else fill_disc(panel, p, 2.5, c);
+      const double width = batch ? 3.0 : 5.0;
+      if (have_prev) draw_segment(panel, prev, p, width, c);
+      else fill_disc(panel, p, width / 2.0, c);
       prev = p;
       have_prev = true;
     }
   }
-  if (in.options.draw_final_wire)
-    for (const EpisodeTrace& t : in.traces)
-      if (!t.wire_shapes.empty()) {
-        const auto px = project(view, t.wire_shapes.back());
-        for (std::size_t i = 1; i < px.size(); ++i) draw_segment(panel, px[i - 1], px[i], 2.0, pal::kWire);
-      }
+  if (!batch) draw_final_wires(panel, view, in);
   for (const EpisodeTrace& t : in.traces)
     for (std::size_t i = t.tip.size(); i-- > 0;)
       if (t.tip[i].allFinite()) {
@@ -269,7 +278,7 @@ void draw_panel(Image& panel, const ViewProjection& view, const PanelInput& in) 
   }
 }
 
-void draw_legend(Image& img, int y0, const BiplaneOptions& options, double t_max, Rgb tip_color) {
+void draw_legend(Image& img, int y0, const BiplaneOptions& options, double t_max, Rgb tip_color, bool batch) {
   enum Kind { Box, Line, Square, Ring, Dot, Tip, Ramp };
   struct Item { Kind kind; Rgb color; std::string label; };
   std::vector<Item> items = {{Box, pal::kVesselFill, "vessel"}, {Line, pal::kPath, "path"},
@@ -282,7 +291,8 @@ void draw_legend(Image& img, int y0, const BiplaneOptions& options, double t_max
     items.push_back({Ramp, pal::kText, "tip time 0-" + format("%.3g", t_max) + " s"});
   }
   if (options.draw_final_wire) items.push_back({Line, pal::kWire, "final wire"});
-  items.push_back({Tip, tip_color, "final tip"});
+  // Several episodes: the header lists the outcomes; a neutral swatch says "coloured by outcome".
+  items.push_back({Tip, batch ? pal::outcome_color("") : tip_color, "final tip"});
 
   constexpr int kSwatch = 26, kGap = 22;
   int scale = 2, total = 0;
@@ -419,7 +429,8 @@ BiplaneRender render_biplane(const TriangleMesh& mesh, const CenterlineGraph& gr
     out.views[static_cast<std::size_t>(v)] = local;
     out.views[static_cast<std::size_t>(v)].panel_origin = {x0, panel_y};
   }
-  draw_legend(img, H - legend_h + 4, options, t_max, traces.size() == 1 ? head_color : pal::outcome_color("success"));
+  draw_legend(img, H - legend_h + 4, options, t_max, traces.size() == 1 ? head_color : pal::outcome_color("success"),
+              traces.size() > 1);
   return out;
 }
 

@@ -8,7 +8,8 @@
 //     with number) and the target (red ring, "T<id>"),
 //   - each episode's tip trace: orange where the wire was only pushed, green where the
 //     agent was in control (or coloured by time, TraceColoring::Time), the final wire
-//     shape in black and the final tip as a dot in the outcome's colour,
+//     shape in black (over the trace for one episode, under the traces for several) and
+//     the final tip as a dot in the outcome's colour,
 //   - at the top the outcome (SUCCESS / WRONG BRANCH: <detail> / ...; "k/N SUCCESS" for
 //     several episodes) and the title lines, a legend at the bottom, a mm scale bar per panel.
 #include <Eigen/Core>

@@ -280,3 +280,17 @@ TEST_CASE("biplane: an outcome detail too long for the big headline is wrapped b
   t.detail = "physics diverged: wire point 339 is 0.509521 mm outside the vessel wall (t = 4.640000 s) after 117 steps";
   CHECK(detail_pixels(t) > 100);
 }
+
+TEST_CASE("biplane: one episode's wire is drawn over its trace, several episodes' wires under theirs",
+          "[report][biplane]") {
+  const CenterlineGraph graph = test::straight_graph();
+  const auto path = plan_path(graph, 1).points;
+  EpisodeTrace on_wire = test::box_trace();
+  for (auto& p : on_wire.tip) p.x() = 1.5;  // the tip ran where the final wire lies
+  const Eigen::Vector3d probe(1.5, 25.0, 0.0);
+  const BiplaneRender one = render_biplane(test::box_vessel(), graph, path, graph.targets[0], {on_wire}, {}, fixed_axes());
+  CHECK(pixel(one, 0, probe) == pal::kWire);
+  const BiplaneRender two =
+      render_biplane(test::box_vessel(), graph, path, graph.targets[0], {test::box_trace(), on_wire}, {}, fixed_axes());
+  CHECK(pixel(two, 0, probe) == pal::kTipAgent);
+}

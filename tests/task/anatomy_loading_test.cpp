@@ -1,0 +1,69 @@
+// Loading anatomies: the index (sets, names), explicit paths, and every way it can go wrong.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+
+#include "engine/task/anatomy.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+const std::string kIndex = std::string(GW_SOURCE_DIR) + "/anatomies/index.json";
+const std::string kT1 = std::string(GW_SOURCE_DIR) + "/anatomies/train/t1_straight_y/t1_straight_y";
+
+fs::path scratch_dir(const std::string& name) {
+  const fs::path d = fs::path(GW_BINARY_DIR) / "test_task_scratch" / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+}  // namespace
+
+TEST_CASE("anatomy sources: set names, anatomy names and paths resolve", "[task][anatomy]") {
+  const auto train = gw::resolve_anatomy_sources("train", kIndex);
+  REQUIRE(train.size() == 4);
+  CHECK(train[0].name == "t1_straight_y");
+  for (const auto& s : train) {
+    CHECK(fs::exists(s.mesh));
+    CHECK(fs::exists(s.truth));
+  }
+  const auto two = gw::resolve_anatomy_sources(" t4_s_curving_back , t1_straight_y", kIndex);
+  REQUIRE(two.size() == 2);
+  CHECK(two[0].name == "t4_s_curving_back");
+  const auto by_mesh = gw::resolve_anatomy_sources(kT1 + ".stl", "/nonexistent/index.json");  // index not needed
+  REQUIRE(by_mesh.size() == 1);
+  CHECK(by_mesh[0].name == "t1_straight_y");
+  CHECK(by_mesh[0].truth == kT1 + ".truth.json");
+  const auto by_truth = gw::resolve_anatomy_sources(kT1 + ".truth.json", kIndex);
+  CHECK(by_truth[0].mesh == kT1 + ".stl");
+  CHECK(gw::default_anatomy_index() == kIndex);
+}
+
+TEST_CASE("anatomy sources: clear errors", "[task][anatomy]") {
+  CHECK_THROWS_WITH(gw::resolve_anatomy_sources("", kIndex), Catch::Contains("empty"));
+  CHECK_THROWS_WITH(gw::resolve_anatomy_sources("t9_nothing", kIndex),
+                    Catch::Contains("'t9_nothing'") && Catch::Contains("index.json"));
+  CHECK_THROWS_WITH(gw::resolve_anatomy_sources("train", "/nonexistent/index.json"),
+                    Catch::Contains("/nonexistent/index.json"));
+  CHECK_THROWS_WITH(gw::resolve_anatomy_sources("/nonexistent/v.stl", kIndex), Catch::Contains("/nonexistent/v.stl"));
+  const fs::path d = scratch_dir("no_truth");
+  fs::copy_file(kT1 + ".stl", d / "lonely.stl");
+  CHECK_THROWS_WITH(gw::resolve_anatomy_sources((d / "lonely.stl").string(), kIndex),
+                    Catch::Contains("lonely.truth.json"));
+  std::ofstream(d / "index.json") << "{ not json";
+  CHECK_THROWS_WITH(gw::resolve_anatomy_sources("train", (d / "index.json").string()), Catch::Contains("not valid JSON"));
+  std::ofstream(d / "bad.truth.json") << R"({"schema":"guidewire-nav/centerline/1"})";
+  fs::copy_file(kT1 + ".stl", d / "bad.stl");
+  CHECK_THROWS_WITH(gw::load_anatomies((d / "bad.stl").string(), kIndex), Catch::Contains("bad.truth.json"));
+}
+
+TEST_CASE("anatomy: a training anatomy loads with its scene and branch polylines", "[task][anatomy]") {
+  const gw::Anatomy a = gw::load_anatomy("t1", kT1 + ".stl", kT1 + ".truth.json");
+  CHECK(a.scene != nullptr);
+  CHECK(a.graph.targets.size() == 2);
+  CHECK(a.branch_lines.size() == a.graph.branches.size());
+  CHECK(a.mesh_path == kT1 + ".stl");
+  gw::CenterlineGraph empty = a.graph;
+  empty.targets.clear();
+  CHECK_THROWS_WITH(gw::make_anatomy("e", empty, nullptr), Catch::Contains("no targets"));
+}

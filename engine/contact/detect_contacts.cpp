@@ -1,7 +1,9 @@
 #include "engine/contact/detect_contacts.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 namespace gw {
 
@@ -20,61 +22,73 @@ bool contact_point_active(const WireModel& model, const WireState& state, int po
   return arc < state.inserted_length_mm - model.params.inlet_clearance_mm;
 }
 
+namespace {
+
+// Re-gathers the candidates of one point around `p` within `radius`, sorted by distance lower bound.
+void refresh(const VesselScene& scene, const Eigen::Vector3d& p, double radius, WallCandidates& c) {
+  triangles_within(scene, p, radius, c.triangles);
+  c.centre = p;
+  c.gathered = radius;
+  const std::size_t n = c.triangles.size();
+  c.lower_bounds.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const int f = c.triangles[i];
+    c.lower_bounds[i] = std::max(0.0, (p - scene.face_centres.row(f).transpose()).norm() - scene.face_radii(f));
+  }
+  // Sort both arrays by the lower bound (small lists: insertion sort, no allocation).
+  for (std::size_t i = 1; i < n; ++i) {
+    const double lb = c.lower_bounds[i];
+    const int f = c.triangles[i];
+    std::size_t j = i;
+    for (; j > 0 && c.lower_bounds[j - 1] > lb; --j) {
+      c.lower_bounds[j] = c.lower_bounds[j - 1];
+      c.triangles[j] = c.triangles[j - 1];
+    }
+    c.lower_bounds[j] = lb;
+    c.triangles[j] = f;
+  }
+  if (n == 0) c.clearance = wall_distance(scene, p).signed_distance;
+}
+
+}  // namespace
+
 WallDistance cached_wall_distance(const WireModel& model, const VesselScene& scene, WireState& state, int point,
-                                  const Eigen::Vector3d& p) {
+                                  const Eigen::Vector3d& p, double need) {
   const int count = contact_point_count(model);
   if (state.wall_cache_scene != &scene || static_cast<int>(state.wall_cache.size()) != count) {
     state.wall_cache.assign(count, WallCandidates{});
     state.wall_cache_scene = &scene;
   }
   WallCandidates& c = state.wall_cache[point];
-  const double reach = model.radius_mm + model.params.contact_margin_mm;
-  if (!(c.slack >= 0) || (p - c.centre).squaredNorm() > c.slack * c.slack) {
-    const double slack = model.params.contact_slack_mm;
-    triangles_within(scene, p, reach + slack, c.triangles);
-    c.centre = p;
-    if (!c.triangles.empty()) {
-      c.slack = slack;
-    } else {
-      // Nothing within reach + slack: remember how far the wall is and on which side, so the point
-      // can move that far before asking again.
-      const WallDistance exact = wall_distance(scene, p);
-      c.clearance = exact.signed_distance;
-      c.slack = std::abs(exact.signed_distance) - reach;
-      if (exact.signed_distance < 0) {
-        c.slack = -1;  // outside the vessel: never trust a cache, report the exact distance
-        return exact;
-      }
-    }
+  double moved = c.gathered >= 0 ? (p - c.centre).norm() : 0;
+  if (c.gathered < 0 || c.gathered - moved < need) {
+    refresh(scene, p, need + model.params.contact_slack_mm, c);
+    moved = 0;
   }
   if (c.triangles.empty()) {
+    if (c.clearance < 0) return wall_distance(scene, p);  // outside the vessel: always exact
     WallDistance far;
-    far.signed_distance = c.clearance - (p - c.centre).norm();  // a lower bound, still beyond reach
+    far.signed_distance = c.clearance - moved;  // lower bound, >= need
     return far;
   }
-  WallDistance wd = wall_distance_among(scene, p, c.triangles, reach + c.slack);
-  if (wd.triangle < 0) wd.signed_distance = reach + 1.0;  // every candidate beyond reach
+  WallDistance wd = wall_distance_among(scene, p, c.triangles, std::numeric_limits<double>::infinity(),
+                                        &c.lower_bounds, moved);
   return wd;
 }
 
 void detect_contacts(const WireModel& model, const VesselScene& scene, WireState& state,
-                     const std::vector<Eigen::Vector3d>& x, std::vector<ContactPoint>& out) {
+                     const std::vector<Eigen::Vector3d>& v_free, std::vector<ContactPoint>& out, double& deepest) {
   out.clear();
+  deepest = 0;
   const double r = model.radius_mm;
   const double margin = model.params.contact_margin_mm;
+  const double dt = model.h;
+  const int first_free = first_free_node(model, state);
   // Active points are a suffix of the nodes and a suffix of the midpoints (arc decreases distally).
   int first_node = model.nodes, first_mid = model.nodes - 1;
-  while (first_node > 0 && contact_point_active(model, state, first_node - 1)) --first_node;
-  while (first_mid > 0 && contact_point_active(model, state, model.nodes + first_mid - 1)) --first_mid;
-  const int first_free = first_free_node(model, state);
+  while (first_node > first_free && contact_point_active(model, state, first_node - 1)) --first_node;
+  while (first_mid > first_free && contact_point_active(model, state, model.nodes + first_mid - 1)) --first_mid;
   auto visit = [&](int point) {
-    // A midpoint whose proximal node is still in the introducer is held there.
-    if (point >= model.nodes && point - model.nodes < first_free) return;
-    if (point < first_free) return;
-    const Eigen::Vector3d p = contact_point_position(model, x, point);
-    const WallDistance wd = cached_wall_distance(model, scene, state, point, p);
-    const double gap = wd.signed_distance - r;
-    if (!(gap < margin) || wd.triangle < 0) return;
     ContactPoint c;
     c.point = point;
     if (point < model.nodes) {
@@ -84,10 +98,19 @@ void detect_contacts(const WireModel& model, const VesselScene& scene, WireState
       c.node_b = c.node_a + 1;
       c.wa = c.wb = 0.5;
     }
+    Eigen::Vector3d v = c.wa * v_free[c.node_a];
+    if (c.node_b >= 0) v += c.wb * v_free[c.node_b];
+    // Swept test: the point is a candidate if its free motion this step could bring it within the margin.
+    const double reach = r + margin + dt * v.norm();
+    const Eigen::Vector3d p = contact_point_position(model, state.x, point);
+    const WallDistance wd = cached_wall_distance(model, scene, state, point, p, reach);
+    deepest = std::max(deepest, -wd.signed_distance);
+    if (!(wd.signed_distance < reach) || wd.triangle < 0) return;
     c.n = wd.inward;
     c.t1 = c.n.unitOrthogonal();
     c.t2 = c.n.cross(c.t1);
-    c.gap = gap;
+    c.gap = wd.signed_distance - r;
+    c.v_free = v;
     out.push_back(c);
   };
   for (int i = first_node; i < model.nodes; ++i) visit(i);

@@ -2,7 +2,8 @@
 // Stage "detect": which parts of the wire are within reach of the vessel wall.
 // Contact points are the free nodes and the element midpoints (so a 2 mm chord cannot cut through a
 // bend of the wall between two nodes); each becomes a unilateral constraint along the wall's inward
-// direction with two friction directions. Broad phase: FCL sphere-vs-BVH queries, cached per point
+// direction at the start of the step, with two friction directions. The constraint keeps the linearised
+// clearance gap + dt n.v >= 0 at the end of the step. Broad phase: FCL sphere-vs-BVH queries, cached per point
 // (WireState::wall_cache) and redone only when the point has moved more than the cache slack.
 #include <Eigen/Core>
 #include <vector>
@@ -13,11 +14,12 @@
 namespace gw {
 
 struct ContactPoint {
-  int point = 0;              // contact point id: node i -> i, midpoint of element e -> nodes + e
+  int point = 0;                // contact point id: node i -> i, midpoint of element e -> nodes + e
   int node_a = 0, node_b = -1;  // nodes carrying it (node_b = -1 for a node point)
-  double wa = 1, wb = 0;      // interpolation weights
-  Eigen::Vector3d n, t1, t2;  // n: into the lumen; t1, t2: tangent plane
-  double gap = 0;             // wall clearance of the wire surface (signed distance - radius) [mm]
+  double wa = 1, wb = 0;        // interpolation weights
+  Eigen::Vector3d n, t1, t2;    // n: into the lumen; t1, t2: tangent plane
+  double gap = 0;               // wall clearance of the wire surface at the start of the step [mm]
+  Eigen::Vector3d v_free;       // velocity of the point after the free (contact-less) motion [mm/s]
 };
 
 // Number of contact points (nodes + element midpoints) a model has.
@@ -29,15 +31,17 @@ Eigen::Vector3d contact_point_position(const WireModel& model, const std::vector
 // True when `point` is inserted far enough to be tested against the wall (past inlet_clearance_mm).
 bool contact_point_active(const WireModel& model, const WireState& state, int point);
 
-// Signed distance (> 0 inside) of `p` (contact point `point`) to the wall, using and refreshing the
-// state's cache. Exact whenever |result| < reach = radius + contact margin; otherwise a value beyond
-// reach on the correct side.
+// Signed distance (> 0 inside) from `p` (contact point `point`) to the wall, using and refreshing the
+// state's cache. Exact whenever the distance is below `need`; otherwise a lower bound >= need on the
+// correct side (triangle = -1). Points outside the vessel are always exact.
 WallDistance cached_wall_distance(const WireModel& model, const VesselScene& scene, WireState& state, int point,
-                                  const Eigen::Vector3d& p);
+                                  const Eigen::Vector3d& p, double need);
 
-// Contacts of the wire at node positions `x` (the predicted positions of this step): every active
-// point whose surface clearance is below params.contact_margin_mm. Clears and fills `out`.
+// Contacts of the wire at the start of the step (state.x), linearised there (SOFA-style): every active
+// point whose wall clearance is below the margin plus its free-motion travel dt |v_free| this step.
+// `v_free`: per node velocity after the free motion. Clears and fills `out`; `deepest` = largest
+// distance of an active point outside the wall (0 if none).
 void detect_contacts(const WireModel& model, const VesselScene& scene, WireState& state,
-                     const std::vector<Eigen::Vector3d>& x, std::vector<ContactPoint>& out);
+                     const std::vector<Eigen::Vector3d>& v_free, std::vector<ContactPoint>& out, double& deepest);
 
 }  // namespace gw

@@ -7,6 +7,8 @@ namespace gw {
 
 namespace {
 
+const double kPenetrationRecovery = 0.3;  // fraction of a penetration removed per sub-step
+
 // Translational 3x3 block of A^-1 between contact-node slots i and j.
 const Eigen::Matrix3d& xblock(const ContactWorkspace& ws, int i, int j) {
   return ws.xtt[static_cast<std::size_t>(i) * ws.nodes.size() + j];
@@ -37,18 +39,15 @@ void build_inverse_blocks(const BlockTridiagonalFactor& f, ContactWorkspace& ws)
 
 }  // namespace
 
-ContactSolveResult solve_contacts(const BlockTridiagonal& a, const BlockTridiagonalFactor& f, int first_free,
-                                  const std::vector<ContactPoint>& contacts,
-                                  const std::vector<Eigen::Vector3d>& v_free, double dt, double mu, int iterations,
-                                  ContactWorkspace& ws, Eigen::Ref<Eigen::VectorXd> dv) {
-  ContactSolveResult res;
-  const int m = static_cast<int>(contacts.size());
+void prepare_contact_compliance(const BlockTridiagonal& a, const BlockTridiagonalFactor& f, int first_free,
+                                const std::vector<ContactPoint>& contacts, ContactWorkspace& ws) {
   const int nf = a.size();
-  if (m == 0 || nf == 0) return res;
-
-  // Contact nodes (local indices), sorted and unique.
-  if (static_cast<int>(ws.slot.size()) < nf) ws.slot.resize(nf, -1);
+  for (int s : ws.nodes) ws.slot[s] = -1;  // forget the previous call's nodes
   ws.nodes.clear();
+  ws.first_free = first_free;
+  if (contacts.empty() || nf == 0) return;
+  if (static_cast<int>(ws.slot.size()) < nf) ws.slot.resize(nf, -1);
+  // Contact nodes (local indices), sorted and unique.
   for (const ContactPoint& c : contacts) {
     ws.nodes.push_back(c.node_a - first_free);
     if (c.node_b >= 0) ws.nodes.push_back(c.node_b - first_free);
@@ -56,16 +55,25 @@ ContactSolveResult solve_contacts(const BlockTridiagonal& a, const BlockTridiago
   std::sort(ws.nodes.begin(), ws.nodes.end());
   ws.nodes.erase(std::unique(ws.nodes.begin(), ws.nodes.end()), ws.nodes.end());
   for (std::size_t s = 0; s < ws.nodes.size(); ++s) ws.slot[ws.nodes[s]] = static_cast<int>(s);
-
   inverse_diagonal_blocks(f, ws.sigma);
   build_inverse_blocks(f, ws);
+}
 
+ContactSolveResult solve_contact_impulses(const std::vector<ContactPoint>& contacts, double dt, double mu,
+                                          int iterations, bool warm_start, ContactWorkspace& ws) {
+  ContactSolveResult res;
+  const int m = static_cast<int>(contacts.size());
+  if (m == 0 || ws.nodes.empty()) return res;
+  const int first_free = ws.first_free;
   // W = H A^-1 H^T, 3x3 block per contact pair; rows of a contact: (n, t1, t2).
   const int dim = 3 * m;
   if (ws.w.rows() < dim) {
-    ws.w.resize(dim, dim);
-    ws.bias.resize(dim);
-    ws.impulse.resize(dim);
+    const int cap = std::max(dim, 2 * static_cast<int>(ws.w.rows()));
+    ws.w.resize(cap, cap);
+    Eigen::VectorXd keep = ws.impulse;
+    ws.bias.resize(cap);
+    ws.impulse = Eigen::VectorXd::Zero(cap);
+    ws.impulse.head(keep.size()) = keep;
   }
   auto basis = [](const ContactPoint& c) {
     Eigen::Matrix3d b;
@@ -95,14 +103,21 @@ ContactSolveResult solve_contacts(const BlockTridiagonal& a, const BlockTridiago
       ws.w.block<3, 3>(3 * ci, 3 * di) = wcd;
       ws.w.block<3, 3>(3 * di, 3 * ci) = wcd.transpose();
     }
-    const Eigen::Vector3d vc = v_free[ci];
-    ws.bias.segment<3>(3 * ci) << c.gap / dt, c.t1.dot(vc), c.t2.dot(vc);
+    // End-of-step normal velocity must keep the gap: gap / dt + n.(v_free + dv_c) >= 0.
+    const Eigen::Vector3d& vc = c.v_free;
+    // A penetration (gap < 0) is pushed out over a few steps (Baumgarte factor), not in one: a full
+    // one-step correction of a deep point throws soft parts of the wire across the vessel.
+    const double gap_rate = c.gap >= 0 ? c.gap / dt : kPenetrationRecovery * c.gap / dt;
+    ws.bias.segment<3>(3 * ci) << gap_rate + c.n.dot(vc), c.t1.dot(vc), c.t2.dot(vc);
   }
-  for (int s : ws.nodes) ws.slot[s] = -1;
 
   // Projected Gauss-Seidel.
   auto p = ws.impulse.head(dim);
-  p.setZero();
+  if (warm_start) {
+    for (int ci = 0; ci < m; ++ci) p.segment<2>(3 * ci + 1).setZero();  // tangent bases changed
+  } else {
+    p.setZero();
+  }
   const auto w = ws.w.topLeftCorner(dim, dim);
   for (int it = 0; it < iterations; ++it) {
     double change = 0, largest = 1e-300;
@@ -123,19 +138,33 @@ ContactSolveResult solve_contacts(const BlockTridiagonal& a, const BlockTridiago
     res.residual = change / largest;
     if (res.residual < 1e-10) break;
   }
+  return res;
+}
 
-  // dv += A^-1 H^T p.
-  if (ws.h_t_p.size() < 6 * nf) ws.h_t_p.resize(6 * a.diag.size());
+void contact_velocity_change(const BlockTridiagonal& a, const BlockTridiagonalFactor& f,
+                             const std::vector<ContactPoint>& contacts, ContactWorkspace& ws) {
+  const int nf = a.size();
+  if (ws.h_t_p.size() < 6 * nf) ws.h_t_p.resize(6 * static_cast<Eigen::Index>(a.diag.size()));
   auto r = ws.h_t_p.head(6 * nf);
   r.setZero();
-  for (int ci = 0; ci < m; ++ci) {
+  const auto& p = ws.impulse;
+  for (std::size_t ci = 0; ci < contacts.size(); ++ci) {
     const ContactPoint& c = contacts[ci];
     const Eigen::Vector3d fimp = c.n * p[3 * ci] + c.t1 * p[3 * ci + 1] + c.t2 * p[3 * ci + 2];
-    r.segment<3>(6 * (c.node_a - first_free)) += c.wa * fimp;
-    if (c.node_b >= 0) r.segment<3>(6 * (c.node_b - first_free)) += c.wb * fimp;
+    r.segment<3>(6 * (c.node_a - ws.first_free)) += c.wa * fimp;
+    if (c.node_b >= 0) r.segment<3>(6 * (c.node_b - ws.first_free)) += c.wb * fimp;
   }
-  solve_block_tridiagonal(a, f, r);
-  dv.head(6 * nf) += r;
+  if (nf > 0) solve_block_tridiagonal(a, f, r);
+}
+
+ContactSolveResult solve_contacts(const BlockTridiagonal& a, const BlockTridiagonalFactor& f, int first_free,
+                                  const std::vector<ContactPoint>& contacts, double dt, double mu, int iterations,
+                                  ContactWorkspace& ws, Eigen::Ref<Eigen::VectorXd> dv) {
+  prepare_contact_compliance(a, f, first_free, contacts, ws);
+  const ContactSolveResult res = solve_contact_impulses(contacts, dt, mu, iterations, false, ws);
+  if (contacts.empty() || a.size() == 0) return res;
+  contact_velocity_change(a, f, contacts, ws);
+  dv.head(6 * a.size()) += ws.h_t_p.head(6 * a.size());
   return res;
 }
 

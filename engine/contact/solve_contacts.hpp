@@ -1,9 +1,9 @@
 #pragma once
 // Stage "constraints": Lagrange-multiplier contact with Coulomb friction (paper Eq. 2).
-// With the free-motion velocity change dv_free of the implicit step, the correction is
-// dv_c = A^-1 H^T p (p = dt lambda, impulses); the gaps become g + dt (W p)_n with the compliance
+// With the free-motion velocities v_free of the implicit step, the correction is dv_c = A^-1 H^T p
+// (p = dt lambda, impulses) and the contact velocities become u = H v_free + W p with the compliance
 // W = H A^-1 H^T. Projected Gauss-Seidel solves
-//   0 <= p_n  _|_  (W p)_n + g / dt >= 0,      |p_t| <= mu p_n opposing the tangential velocity.
+//   0 <= p_n  _|_  g / dt + u_n >= 0,      |p_t| <= mu p_n, sticking (u_t = 0) inside the cone.
 // W is built from the block-tridiagonal factorisation: selected blocks of A^-1 between contact nodes,
 // chained through the G factors, O(N + n_c^2) instead of one solve per constraint.
 #include <Eigen/Core>
@@ -21,7 +21,8 @@ struct ContactWorkspace {
   std::vector<Mat6> chain;           // products of -G between consecutive contact nodes
   std::vector<Eigen::Matrix3d> xtt;  // translational blocks of A^-1 between contact nodes (dense)
   Eigen::MatrixXd w;                 // compliance, 3 rows per contact
-  Eigen::VectorXd bias, impulse, h_t_p;
+  Eigen::VectorXd bias, impulse, h_t_p;  // h_t_p: after contact_velocity_change, A^-1 H^T p
+  int first_free = 0;
 };
 
 struct ContactSolveResult {
@@ -29,12 +30,23 @@ struct ContactSolveResult {
   double residual = 0;  // largest impulse change in the last sweep, relative to the largest impulse
 };
 
-// Solves for the contact impulses and adds the velocity correction to `dv` (6 per free node).
-// `v_free`: predicted world velocity of each contact point without contact; `first_free`: global index of
-// local node 0. Writes impulses per contact (3 each: n, t1, t2) into ws.impulse.
+// Step 1: the blocks of A^-1 between the contact nodes (independent of the contact directions).
+void prepare_contact_compliance(const BlockTridiagonal& a, const BlockTridiagonalFactor& f, int first_free,
+                                const std::vector<ContactPoint>& contacts, ContactWorkspace& ws);
+
+// Step 2: W for the contacts' current directions, then projected Gauss-Seidel; impulses in ws.impulse
+// (3 per contact: n, t1, t2). `warm_start` keeps the previous normal impulses as the initial guess.
+ContactSolveResult solve_contact_impulses(const std::vector<ContactPoint>& contacts, double dt, double mu,
+                                          int iterations, bool warm_start, ContactWorkspace& ws);
+
+// Step 3: the velocity change A^-1 H^T p of the impulses, into ws.h_t_p (6 per free node).
+void contact_velocity_change(const BlockTridiagonal& a, const BlockTridiagonalFactor& f,
+                             const std::vector<ContactPoint>& contacts, ContactWorkspace& ws);
+
+// All three steps; adds the velocity correction to `dv`. and adds the velocity correction to `dv` (6 per free node).
+// `first_free`: global index of local node 0. Writes impulses per contact (3 each: n, t1, t2) into ws.impulse.
 ContactSolveResult solve_contacts(const BlockTridiagonal& a, const BlockTridiagonalFactor& f, int first_free,
-                                  const std::vector<ContactPoint>& contacts,
-                                  const std::vector<Eigen::Vector3d>& v_free, double dt, double mu, int iterations,
+                                  const std::vector<ContactPoint>& contacts, double dt, double mu, int iterations,
                                   ContactWorkspace& ws, Eigen::Ref<Eigen::VectorXd> dv);
 
 }  // namespace gw

@@ -1,5 +1,6 @@
 #include "engine/scene/vessel_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/sphere.h>
@@ -46,6 +47,22 @@ VesselScene make_vessel_scene(const TriangleMesh& mesh) {
     volume += a.dot(b.cross(c)) / 6.0;
     tris[f] = fcl::Triangle(mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2));
   }
+  // Angle-weighted vertex normals (Thurmer & Wuthrich 1998).
+  s.vertex_normals = Eigen::MatrixX3d::Zero(nv, 3);
+  for (int f = 0; f < nf; ++f) {
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::Vector3d p0 = mesh.V.row(mesh.F(f, c)), p1 = mesh.V.row(mesh.F(f, (c + 1) % 3)),
+                            p2 = mesh.V.row(mesh.F(f, (c + 2) % 3));
+      const Eigen::Vector3d e1 = p1 - p0, e2 = p2 - p0;
+      const double den = e1.norm() * e2.norm();
+      const double angle = den > 0 ? std::acos(std::clamp(e1.dot(e2) / den, -1.0, 1.0)) : 0.0;
+      s.vertex_normals.row(mesh.F(f, c)) += angle * s.face_normals.row(f);
+    }
+  }
+  for (int i = 0; i < nv; ++i) {
+    const double len = s.vertex_normals.row(i).norm();
+    if (len > 0) s.vertex_normals.row(i) /= len;
+  }
   if (!(volume > 0))
     throw std::runtime_error("make_vessel_scene: the vessel mesh has signed volume " + std::to_string(volume) +
                              " <= 0 (not closed or oriented inwards); the lumen must be the inside");
@@ -85,7 +102,7 @@ double nearest_triangle(const VesselScene& scene, const Eigen::Vector3d& p, int&
 }
 
 WallDistance wall_distance_among(const VesselScene& scene, const Eigen::Vector3d& p, const std::vector<int>& triangles,
-                                 double cutoff) {
+                                 double cutoff, const std::vector<double>* lower_bounds, double moved) {
   WallDistance best;
   best.signed_distance = std::numeric_limits<double>::infinity();
   double best_d2 = cutoff * cutoff;
@@ -93,7 +110,12 @@ WallDistance wall_distance_among(const VesselScene& scene, const Eigen::Vector3d
   Eigen::Vector3d best_diff = Eigen::Vector3d::Zero();
   const auto& V = scene.mesh.V;
   const auto& F = scene.mesh.F;
-  for (int f : triangles) {
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    const int f = triangles[i];
+    if (lower_bounds) {
+      const double lb = (*lower_bounds)[i] - moved;
+      if (lb > 0 && lb * lb > best_d2 * (1 + 1e-9) + 1e-18) break;  // sorted: nothing later is closer
+    }
     // Early out: the triangle lies inside its bounding sphere.
     const double dc = (p - scene.face_centres.row(f).transpose()).norm() - scene.face_radii(f);
     if (dc > 0 && dc * dc > best_d2 * (1 + 1e-12)) continue;
@@ -121,14 +143,25 @@ WallDistance wall_distance_among(const VesselScene& scene, const Eigen::Vector3d
     }
   }
   if (best.triangle < 0) return best;
-  const Eigen::Vector3d n = scene.face_normals.row(best.triangle).transpose();
+  const int f = best.triangle;
+  const Eigen::Vector3d n = scene.face_normals.row(f).transpose();
   const double dist = std::sqrt(best_d2);
   const bool inside = best_diff.dot(n) <= 0;
   best.signed_distance = inside ? dist : -dist;
-  if (dist > 1e-9)
-    best.inward = inside ? Eigen::Vector3d(best_diff / dist) : Eigen::Vector3d(-best_diff / dist);
-  else
-    best.inward = -n;
+  // Barycentric coordinates of the closest point, then the interpolated vertex normal there.
+  const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+  const Eigen::Vector3d v0 = b - a, v1 = c - a, v2 = best.closest - a;
+  const double d00 = v0.dot(v0), d01 = v0.dot(v1), d11 = v1.dot(v1), d20 = v2.dot(v0), d21 = v2.dot(v1);
+  const double den = d00 * d11 - d01 * d01;
+  Eigen::Vector3d smooth = n;
+  if (den > 0) {
+    const double wb = (d11 * d20 - d01 * d21) / den, wc = (d00 * d21 - d01 * d20) / den;
+    smooth = (1 - wb - wc) * scene.vertex_normals.row(F(f, 0)).transpose() +
+             wb * scene.vertex_normals.row(F(f, 1)).transpose() + wc * scene.vertex_normals.row(F(f, 2)).transpose();
+    if (smooth.norm() > 1e-9 && smooth.dot(n) > 0) smooth.normalize();
+    else smooth = n;
+  }
+  best.inward = -smooth;
   return best;
 }
 

@@ -15,6 +15,7 @@ struct VesselSceneBvh;  // FCL objects, hidden so FCL headers stay out of every 
 struct VesselScene {
   TriangleMesh mesh;
   Eigen::MatrixX3d face_normals;        // unit outward normals
+  Eigen::MatrixX3d vertex_normals;      // angle-weighted unit outward normals (smooth contact normals)
   Eigen::MatrixX3d face_centres;        // bounding-sphere centres (centroids)
   Eigen::VectorXd face_radii;           // bounding-sphere radii around the centroids
   std::shared_ptr<const VesselSceneBvh> bvh;
@@ -25,6 +26,9 @@ struct VesselScene {
 VesselScene make_vessel_scene(const TriangleMesh& mesh);
 
 // Closest wall point to `p`, signed clearance (> 0 inside the lumen) and the direction into the lumen.
+// `inward` is the Phong-interpolated vertex normal at the closest point (negated): it turns smoothly as
+// a point slides over the facets, where facet normals would jump by the facet angle and make a wire
+// pressed on the wall chatter sideways.
 struct WallDistance {
   double signed_distance = 0;                          // distance to the surface, positive inside
   Eigen::Vector3d closest = Eigen::Vector3d::Zero();
@@ -36,10 +40,12 @@ struct WallDistance {
 // for tests and one-off queries; stepping uses cached candidate lists (engine/contact).
 WallDistance wall_distance(const VesselScene& scene, const Eigen::Vector3d& p);
 
-// Closest point among `triangles` only; signed_distance = +inf and triangle = -1 if the list is empty.
-// `cutoff`: triangles whose bounding sphere is farther than this are skipped (early out).
+// Closest point among `triangles` only; signed_distance = +inf and triangle = -1 if none is within
+// `cutoff`. Triangles whose bounding sphere is farther than the best so far are skipped. With
+// `lower_bounds` (ascending, one per triangle, lower bounds of the distance to a point `moved` away
+// from p), the scan stops at the first triangle that cannot be closer than the best.
 WallDistance wall_distance_among(const VesselScene& scene, const Eigen::Vector3d& p, const std::vector<int>& triangles,
-                                 double cutoff);
+                                 double cutoff, const std::vector<double>* lower_bounds = nullptr, double moved = 0);
 
 // Every triangle within `radius` of `p` (FCL sphere-vs-BVH collision query), appended to `out` after
 // clearing it.

@@ -15,7 +15,7 @@ struct ElementLinearisation {
 
 void linearise_element(const WireModel& model, const WireState& st, int e, const BeamElementEval& ev,
                        const Vec6& held_dv, bool held_a, ElementLinearisation& out) {
-  const double dt = model.dt;
+  const double dt = model.h;
   const double s = dt * model.params.damping_stiffness + dt * dt;
   const double l = model.length[e];
   const Vec6& c = model.stiffness[e];
@@ -36,7 +36,7 @@ Vec6 held_velocity_change(const WireState& st, int h, double push, double rotate
 }
 
 Vec6 node_rhs(const WireModel& model, const WireState& st, int i) {
-  const double dt = model.dt;
+  const double dt = model.h;
   const double alpha = model.params.damping_mass;
   Vec6 r;
   r << dt * st.external_force[i] - dt * alpha * model.mass[i] * st.v[i],
@@ -60,7 +60,7 @@ void assemble_system(const WireModel& model, const WireState& st, double push, d
   if (nf == 0) return;
 
   for (int i = k - 1; i < n; ++i) sys.rot[i] = st.q[i].toRotationMatrix();
-  const double dt = model.dt;
+  const double dt = model.h;
   const double mscale = 1.0 + dt * model.params.damping_mass;
   for (int i = k; i < n; ++i) {
     Mat6& d = sys.a.diag[i - k];
@@ -96,7 +96,7 @@ void assemble_system_sparse(const WireModel& model, const WireState& st, double 
   const int dim = 6 * nf;
   std::vector<Eigen::Triplet<double>> trip;
   rhs = Eigen::VectorXd::Zero(dim);
-  const double dt = model.dt;
+  const double dt = model.h;
   const double mscale = 1.0 + dt * model.params.damping_mass;
   for (int i = k; i < n; ++i) {
     const int r = 6 * (i - k);

@@ -19,7 +19,6 @@ struct StepWorkspace {
   DynamicsSystem sys;
   BlockTridiagonalFactor factor;
   Eigen::VectorXd dv;
-  std::vector<Eigen::Vector3d> x_pred;
   std::vector<ContactPoint> contacts;
   std::vector<Eigen::Vector3d> v_contact;
   ContactWorkspace cws;
@@ -39,15 +38,12 @@ StepReport fail(WireState& state, StepReport rep, const std::string& problem) {
   return rep;
 }
 
-Eigen::Vector3d point_velocity(const ContactPoint& c, const std::vector<Eigen::Vector3d>& v_node) {
-  Eigen::Vector3d v = c.wa * v_node[c.node_a];
-  if (c.node_b >= 0) v += c.wb * v_node[c.node_b];
-  return v;
-}
-
 }  // namespace
 
-StepReport step(const WireModel& model, const VesselScene* scene, const Control& control, WireState& state) {
+namespace {
+
+// One integration sub-step of length model.h.
+StepReport substep(const WireModel& model, const VesselScene* scene, const Control& control, WireState& state) {
   StepReport rep;
   const int n = model.nodes;
   if (static_cast<int>(state.x.size()) != n || static_cast<int>(state.q.size()) != n ||
@@ -61,7 +57,7 @@ StepReport step(const WireModel& model, const VesselScene* scene, const Control&
     return fail(state, rep, "the state diverged earlier (" + state.diverged + "); reset it");
 
   thread_local StepWorkspace ws;
-  const double dt = model.dt;
+  const double dt = model.h;
   const double push = control.push_mm_per_s;
   const double rotate = control.rotate_rad_per_s;
   auto clock = std::chrono::steady_clock::now();
@@ -84,27 +80,43 @@ StepReport step(const WireModel& model, const VesselScene* scene, const Control&
   }
   rep.timings.solve_s = seconds_since(clock);
 
-  // Contacts at the predicted positions.
+  // Contacts at the start of the step, linearised there (Eq. 2), with the free-motion velocities.
   std::fill(state.contact_force.begin(), state.contact_force.end(), Eigen::Vector3d::Zero());
   if (scene && nf > 0) {
-    ws.x_pred.resize(n);
     ws.v_contact.resize(n);
-    for (int i = 0; i < n; ++i) {
+    for (int i = 0; i < n; ++i)
       ws.v_contact[i] = i < k ? Eigen::Vector3d(push * state.direction)
                               : Eigen::Vector3d(state.v[i] + dv.segment<3>(6 * (i - k)));
-      ws.x_pred[i] = state.x[i] + dt * ws.v_contact[i];
-    }
-    detect_contacts(model, *scene, state, ws.x_pred, ws.contacts);
+    double outside = 0;
+    detect_contacts(model, *scene, state, ws.v_contact, ws.contacts, outside);
     rep.contacts = static_cast<int>(ws.contacts.size());
     rep.timings.detect_s = seconds_since(clock);
+    if (outside > model.params.divergence_margin_mm)
+      return fail(state, rep, "the wire is " + std::to_string(outside) + " mm outside the vessel wall (t = " +
+                                  std::to_string(state.time) + " s)");
     if (!ws.contacts.empty()) {
-      // Velocities of the contact points themselves (reuse x_pred as scratch is not possible: keep both).
-      static thread_local std::vector<Eigen::Vector3d> vc;
-      vc.resize(ws.contacts.size());
-      for (std::size_t c = 0; c < ws.contacts.size(); ++c) vc[c] = point_velocity(ws.contacts[c], ws.v_contact);
-      const ContactSolveResult cr =
-          solve_contacts(ws.sys.a, ws.factor, k, ws.contacts, vc, dt, model.params.friction,
-                         model.params.contact_iterations, ws.cws, dv);
+      const double mu = model.params.friction;
+      const int iters = model.params.contact_iterations;
+      prepare_contact_compliance(ws.sys.a, ws.factor, k, ws.contacts, ws.cws);
+      ContactSolveResult cr = solve_contact_impulses(ws.contacts, dt, mu, iters, false, ws.cws);
+      contact_velocity_change(ws.sys.a, ws.factor, ws.contacts, ws.cws);
+      // Second pass with each contact re-linearised at the middle of its constrained motion: the wall
+      // normal there makes g(x1) ~ g(x0) + n_mid . (x1 - x0) second-order accurate, so a wire pressed on
+      // a curved wall does not chatter sideways between the tangent planes at its start and end points.
+      for (ContactPoint& c : ws.contacts) {
+        Eigen::Vector3d v_end = c.v_free + c.wa * ws.cws.h_t_p.segment<3>(6 * (c.node_a - k));
+        if (c.node_b >= 0) v_end += c.wb * ws.cws.h_t_p.segment<3>(6 * (c.node_b - k));
+        const Eigen::Vector3d mid = contact_point_position(model, state.x, c.point) + 0.5 * dt * v_end;
+        const double need = model.radius_mm + model.params.contact_margin_mm + dt * v_end.norm();
+        const WallDistance wd = cached_wall_distance(model, *scene, state, c.point, mid, need);
+        if (wd.triangle < 0) continue;
+        c.n = wd.inward;
+        c.t1 = c.n.unitOrthogonal();
+        c.t2 = c.n.cross(c.t1);
+      }
+      cr = solve_contact_impulses(ws.contacts, dt, mu, iters, true, ws.cws);
+      contact_velocity_change(ws.sys.a, ws.factor, ws.contacts, ws.cws);
+      dv += ws.cws.h_t_p.head(6 * nf);
       rep.contact_iterations = cr.iterations;
       for (std::size_t c = 0; c < ws.contacts.size(); ++c) {
         const ContactPoint& cp = ws.contacts[c];
@@ -149,35 +161,18 @@ StepReport step(const WireModel& model, const VesselScene* scene, const Control&
     return fail(state, rep, "exploding energy: " + std::to_string(rep.energy) + " mN mm exceeds the limit " +
                                 std::to_string(model.energy_limit) + " (t = " + std::to_string(state.time) + " s)");
   if (scene && nf > 0) {
-    // Exact wall distances after the correction for every point that was within reach.
+    // Exact wall distances after the step for every constrained point; a point that was not constrained
+    // could only reach the wall by moving more than its swept margin, which the next step's detection
+    // reports (it measures every active point).
     double worst = 0;
     int worst_point = -1;
     for (const ContactPoint& c : ws.contacts) {
       const Eigen::Vector3d p = contact_point_position(model, state.x, c.point);
-      const WallDistance wd = cached_wall_distance(model, *scene, state, c.point, p);
-      const double pen = model.radius_mm - wd.signed_distance;
-      rep.max_penetration_mm = std::max(rep.max_penetration_mm, pen);
+      const WallDistance wd = cached_wall_distance(model, *scene, state, c.point, p, model.radius_mm);
+      rep.max_penetration_mm = std::max(rep.max_penetration_mm, model.radius_mm - wd.signed_distance);
       if (-wd.signed_distance > worst) {
         worst = -wd.signed_distance;
         worst_point = c.point;
-      }
-    }
-    // Points that were beyond the margin can only have reached the wall if the contact correction moved
-    // them by more than the margin: then check every active point.
-    double moved = 0;
-    if (!ws.contacts.empty())
-      for (int i = 0; i < nf; ++i) moved = std::max(moved, dt * ws.cws.h_t_p.segment<3>(6 * i).norm());
-    if (moved >= model.params.contact_margin_mm) {
-      for (int point = 0; point < contact_point_count(model); ++point) {
-        if (!contact_point_active(model, state, point)) continue;
-        if (point < k || (point >= n && point - n < k)) continue;
-        const WallDistance wd = cached_wall_distance(model, *scene, state, point,
-                                                     contact_point_position(model, state.x, point));
-        rep.max_penetration_mm = std::max(rep.max_penetration_mm, model.radius_mm - wd.signed_distance);
-        if (-wd.signed_distance > worst) {
-          worst = -wd.signed_distance;
-          worst_point = point;
-        }
       }
     }
     if (worst > model.params.divergence_margin_mm)
@@ -185,6 +180,28 @@ StepReport step(const WireModel& model, const VesselScene* scene, const Control&
                                   " mm outside the vessel wall (t = " + std::to_string(state.time) + " s)");
   }
   return rep;
+}
+
+}  // namespace
+
+StepReport step(const WireModel& model, const VesselScene* scene, const Control& control, WireState& state) {
+  StepReport total;
+  for (int i = 0; i < model.substeps; ++i) {
+    const StepReport rep = substep(model, scene, control, state);
+    total.ok = rep.ok;
+    total.problem = rep.problem;
+    total.contacts = rep.contacts;
+    total.max_penetration_mm = std::max(total.max_penetration_mm, rep.max_penetration_mm);
+    total.free_nodes = rep.free_nodes;
+    total.contact_iterations = std::max(total.contact_iterations, rep.contact_iterations);
+    total.energy = rep.energy;
+    total.timings.detect_s += rep.timings.detect_s;
+    total.timings.assemble_s += rep.timings.assemble_s;
+    total.timings.solve_s += rep.timings.solve_s;
+    total.timings.constraints_s += rep.timings.constraints_s;
+    if (!rep.ok) break;
+  }
+  return total;
 }
 
 }  // namespace gw

@@ -1,5 +1,6 @@
 #pragma once
-// The pure step function (like mj_step): advances `state` by model.dt under `control`.
+// The pure step function (like mj_step): advances `state` by model.dt under `control`, in
+// model.substeps integration sub-steps of model.h (one linearisation each).
 // Stages, each timed: assemble (beam forces and tangent stiffness, Eq. 1), solve (block-tridiagonal
 // free motion), detect (wall proximity at the predicted positions), constraints (contact impulses by
 // projected Gauss-Seidel on W = H A^-1 H^T, Eq. 2), then integrate and check for divergence.
@@ -22,12 +23,12 @@ struct StepTimings {
 struct StepReport {
   bool ok = true;
   std::string problem;            // why ok == false: NaN, exploding energy, node outside the wall, ...
-  int contacts = 0;               // active contact constraints this step
-  double max_penetration_mm = 0;  // deepest wire-surface penetration of the wall after the step
+  int contacts = 0;               // active contact constraints (last sub-step)
+  double max_penetration_mm = 0;  // deepest wire-surface penetration of the wall over the sub-steps
   int free_nodes = 0;             // nodes out of the introducer (unknowns of the solve)
-  int contact_iterations = 0;     // projected Gauss-Seidel sweeps used
+  int contact_iterations = 0;     // projected Gauss-Seidel sweeps used (most in a sub-step)
   double energy = 0;              // elastic + kinetic energy [mN mm = uJ]
-  StepTimings timings;
+  StepTimings timings;            // summed over the sub-steps
 };
 
 // Advances the state by one step. `scene` nullptr = free space. Never continues a diverged

@@ -12,6 +12,8 @@ WireModel make_wire_model(const WireParams& p, double dt) {
   WireModel m;
   m.params = p;
   m.dt = dt;
+  m.substeps = std::max(1, static_cast<int>(std::ceil(dt / p.max_substep_s - 1e-9)));
+  m.h = dt / m.substeps;
   m.radius_mm = 0.5 * p.diameter_mm;
 
   // Arc positions measured from the tip: fine spacing over the distal region, then body spacing,

@@ -13,7 +13,9 @@ using Vec6 = Eigen::Matrix<double, 6, 1>;
 
 struct WireModel {
   WireParams params;
-  double dt = 0.01;                        // time step [s]
+  double dt = 0.01;                        // control period: one step() call advances this much [s]
+  int substeps = 1;                        // integration sub-steps per step() (params.max_substep_s)
+  double h = 0.01;                         // integration sub-step dt / substeps [s]
   int nodes = 0;
   double radius_mm = 0;                    // wire radius (contact thickness)
   std::vector<double> arc_from_tip;        // per node: arc length to the distal tip [mm]

@@ -10,14 +10,16 @@
 
 namespace gw {
 
-// Per contact point (node or element midpoint), the wall triangles that may come within reach, found
-// by an FCL query around `centre`. Valid while the point stays within `slack` of `centre`; a pure
-// accelerator: results are identical with an empty cache.
+// Per contact point (node or element midpoint), the wall triangles within `gathered` of `centre`, found
+// by an FCL query and sorted by a lower bound of their distance to `centre`. Any triangle within
+// (gathered - |p - centre|) of a point p is in the list, so queries stay exact while the point moves
+// little; a pure accelerator: results are identical with an empty cache.
 struct WallCandidates {
-  Eigen::Vector3d centre = Eigen::Vector3d::Constant(1e300);
-  double slack = -1;               // < 0: invalid
-  std::vector<int> triangles;      // wall triangles within (reach + slack) of centre
-  double clearance = 0;            // when `triangles` is empty: signed wall distance at centre (> 0 inside)
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double gathered = -1;             // query radius used at `centre`; < 0: invalid
+  std::vector<int> triangles;       // sorted by lower_bounds
+  std::vector<double> lower_bounds; // lower bound of each triangle's distance to centre
+  double clearance = 0;             // when `triangles` is empty: signed wall distance at centre (> 0 inside)
 };
 
 struct WireState {

@@ -1,0 +1,88 @@
+// Contact with the vessel wall: pushing through committed anatomies (curved tube, bifurcation) without
+// penetrating, and steering in a symmetric Y by the proximal roll alone.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "anatomy_fixture.hpp"
+#include "engine/sim/step.hpp"
+#include "engine/wire/wire_queries.hpp"
+
+using namespace gw;
+
+namespace {
+
+struct PushResult {
+  int steps = 0;
+  bool ok = true;
+  std::string problem;
+  double max_penetration = 0;
+  int max_contacts = 0;
+  Eigen::Vector3d tip = Eigen::Vector3d::Zero();
+};
+
+PushResult push_through(const WireModel& m, const test::Anatomy& a, double roll, double push_mm_per_s, double length_mm,
+                        double rotate_rad_per_s = 0) {
+  WireState s = make_initial_state(m, a.inlet, a.direction, roll, 2.0);
+  PushResult r;
+  const Control c{push_mm_per_s, rotate_rad_per_s};
+  while (s.inserted_length_mm < length_mm) {
+    const StepReport rep = step(m, &a.scene, c, s);
+    ++r.steps;
+    r.max_penetration = std::max(r.max_penetration, rep.max_penetration_mm);
+    r.max_contacts = std::max(r.max_contacts, rep.contacts);
+    if (!rep.ok) {
+      r.ok = false;
+      r.problem = rep.problem;
+      break;
+    }
+  }
+  r.tip = tip_position(m, s);
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("vessel scene: inside is positive, outside negative, inward normal points into the lumen", "[contact]") {
+  const test::Anatomy a = test::load_anatomy("train/t1_straight_y/t1_straight_y");
+  const WallDistance in = wall_distance(a.scene, Eigen::Vector3d(0, 0, 30));
+  CHECK(in.signed_distance == Approx(1.75).epsilon(0.05));
+  const WallDistance near = wall_distance(a.scene, Eigen::Vector3d(1.5, 0, 30));
+  CHECK(near.signed_distance == Approx(0.25).margin(0.06));
+  CHECK(near.inward.dot(Eigen::Vector3d(-1, 0, 0)) > 0.95);
+  const WallDistance out = wall_distance(a.scene, Eigen::Vector3d(2.5, 0, 30));
+  CHECK(out.signed_distance == Approx(-0.75).margin(0.06));
+  CHECK(out.inward.dot(Eigen::Vector3d(-1, 0, 0)) > 0.95);
+}
+
+TEST_CASE("a vessel mesh oriented inwards is refused", "[contact]") {
+  TriangleMesh m;
+  m.V.resize(4, 3);
+  m.V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  m.F.resize(4, 3);
+  m.F << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3;  // outward tetrahedron
+  CHECK_NOTHROW(make_vessel_scene(m));
+  m.F.col(1).swap(m.F.col(2));
+  CHECK_THROWS_WITH(make_vessel_scene(m), Catch::Contains("signed volume"));
+  CHECK_THROWS_WITH(make_vessel_scene(TriangleMesh{}), Catch::Contains("empty"));
+}
+
+TEST_CASE("steerability: in a symmetric Y the proximal roll alone picks the branch", "[contact][steer]") {
+  const test::Anatomy a = test::load_anatomy("train/t1_straight_y/t1_straight_y");
+  const WireModel m = make_wire_model(default_wire_params(), 0.01);
+  // Roll that makes the tip bend towards +x (branch "right"): the introducer frame's +y must map to +x.
+  const WireState probe = make_initial_state(m, a.inlet, a.direction, 0.0, 2.0);
+  const Eigen::Vector3d y0 = introducer_frame(probe) * Eigen::Vector3d::UnitY();
+  const double roll_right = std::atan2(y0.cross(Eigen::Vector3d::UnitX()).dot(a.direction), y0.dot(Eigen::Vector3d::UnitX()));
+  const PushResult right = push_through(m, a, roll_right, 20.0, 110.0);
+  const PushResult left = push_through(m, a, roll_right + M_PI, 20.0, 110.0);
+  INFO("right: ok " << right.ok << " " << right.problem << " tip " << right.tip.transpose() << " pen " << right.max_penetration
+                    << " contacts " << right.max_contacts);
+  INFO("left: ok " << left.ok << " " << left.problem << " tip " << left.tip.transpose() << " pen " << left.max_penetration
+                   << " contacts " << left.max_contacts);
+  REQUIRE(right.ok);
+  REQUIRE(left.ok);
+  CHECK(right.tip.x() > 10.0);
+  CHECK(left.tip.x() < -10.0);
+  CHECK(right.max_penetration < 0.05);
+  CHECK(left.max_penetration < 0.05);
+}

@@ -70,10 +70,13 @@ CenterlineGraph cached_extract_centerline(const std::string& path, double scale,
   }
   LoadMeshOptions load;
   load.scale = scale;
-  const TriangleMesh mesh = load_valid_mesh(path, load);
+  MeshReport report;
+  const TriangleMesh mesh = load_valid_mesh(path, load, &report);
   CenterlineGraph g;
   try {
     g = extract_centerline(mesh, options, stats);
+    // Unit suspicions and the like come from the mesh check; repairs from extraction.
+    if (stats) stats->warnings.insert(stats->warnings.begin(), report.warnings.begin(), report.warnings.end());
   } catch (const std::invalid_argument&) {
     throw;
   } catch (const std::runtime_error& e) {

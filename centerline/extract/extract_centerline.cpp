@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <queue>
+#include <sstream>
 #include <stdexcept>
 #include <tuple>
 
@@ -55,6 +56,14 @@ CenterlineGraph extract_centerline(const TriangleMesh& mesh, const CenterlineOpt
                              " disconnected piece(s); kept the largest surface");
   if (!closed.caps.empty())
     stats.warnings.push_back("capped " + std::to_string(closed.caps.size()) + " open end(s)");
+  // A vessel a few hundredths of a millimetre wide is a mesh in metres (or cm): every
+  // tolerance below is in millimetres, so refuse rather than return nonsense.
+  if (stats.mean_radius < 0.05) {
+    std::ostringstream msg;
+    msg << "vessel radius is about " << stats.mean_radius
+        << " mm: the mesh is probably not in millimetres (use --scale, e.g. 1000 for metres)";
+    throw std::runtime_error(msg.str());
+  }
   const TriangleMesh coarse = remesh_surface(closed.mesh, stats.mean_radius / opt.edges_per_radius);
   stats.skeleton_faces = coarse.F.rows();
   stats.seconds_prepare = seconds_since(t0);

@@ -68,6 +68,11 @@ TEST_CASE("centerline command: graph JSON, target table, cache, errors", "[cente
   CHECK(bad_inlet.status == 1);
   CHECK(bad_inlet.output.find("error: --inlet: expected x,y,z") == 0);
 
+  const Run metres = run("--anatomy " + mesh + " --scale 0.001" + common);
+  CHECK(metres.status == 1);
+  CHECK(metres.output.find("error: " + mesh + ": vessel radius is about 0.00") != std::string::npos);
+  CHECK(metres.output.find("--scale") != std::string::npos);
+
   const Run bad_out = run("--anatomy " + mesh + " --out /nonexistent/dir/x.json" + common);
   CHECK(bad_out.status == 1);
   CHECK(bad_out.output.find("/nonexistent/dir/x.json: cannot open for writing") != std::string::npos);

@@ -61,6 +61,7 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
     Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
     Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
     std::vector<double> cut(arms.size(), 0.0);
+    std::vector<Eigen::Vector3d> start(arms.size()), dir(arms.size()), mid(arms.size());
     double widest = 0.0;
     bool ok = true;
     for (size_t k = 0; k < arms.size() && ok; ++k) {
@@ -72,7 +73,7 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
       std::sort(near.begin(), near.end());
       const double r = near[near.size() / 2];
       widest = std::max(widest, r);
-      double s0 = clean_start(arms[k], s, r), s1 = s0 + 2.0 * r;
+      double s0 = clean_start(arms[k], s, r), s1 = s0 + 4.0 * r;
       if (s0 < 0) s0 = std::min(1.5 * r, 0.3 * s.back()), s1 = std::min(3.5 * r, 0.6 * s.back());
       s1 = std::min(s1, 0.8 * s.back());
       cut[k] = s0;
@@ -89,16 +90,64 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
       Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
       for (const auto& q : window) cov += (q - mean) * (q - mean).transpose();
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-      const Eigen::Vector3d d = eig.eigenvectors().col(2);
+      Eigen::Vector3d d = eig.eigenvectors().col(2);
+      if (d.dot(window.back() - window.front()) < 0) d = -d;  // away from the junction
+      dir[k] = d;
+      mid[k] = mean;
+      start[k] = window.front();
       const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - d * d.transpose();
       A += P;
       rhs += P * mean;
     }
     if (!ok) continue;
+    // Least-squares point of all axes, trusted only when they are not nearly parallel
+    // (a shallow side branch makes this ill-conditioned; the case below handles it).
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> check(A);
-    if (check.eigenvalues().minCoeff() < 0.05 * check.eigenvalues().maxCoeff()) continue;  // lines (nearly) parallel
-    const Eigen::Vector3d centre = A.ldlt().solve(rhs);
-    if (!centre.allFinite() || (centre - nodes[v]).norm() > max_shift * widest) continue;
+    bool placed = check.eigenvalues().minCoeff() >= 0.05 * check.eigenvalues().maxCoeff();
+    Eigen::Vector3d centre = placed ? Eigen::Vector3d(A.ldlt().solve(rhs)) : nodes[v];
+    // Side branch off a vessel that goes on (two arms nearly opposite): the true centre is
+    // on that vessel's axis, which curves between its two windows. Follow it as a cubic
+    // Hermite curve between the windows and put the centre where it passes nearest to
+    // the side branch's axis. (The plain least-squares point sits off a curved axis by
+    // its sagitta, and at shallow side-branch angles that error is multiplied along it.)
+    std::vector<std::vector<Eigen::Vector3d>> lead(arms.size());  // centre -> window, per arm
+    if (arms.size() == 3) {
+      size_t bi = 0, bj = 1;
+      for (size_t i = 0; i < 3; ++i)
+        for (size_t j = i + 1; j < 3; ++j)
+          if (dir[i].dot(dir[j]) < dir[bi].dot(dir[bj])) bi = i, bj = j;
+      const size_t side = 3 - bi - bj;
+      if (dir[bi].dot(dir[bj]) < -0.8) {
+        const Eigen::Vector3d P0 = start[bi], P1 = start[bj];
+        const double L = (P1 - P0).norm();
+        const Eigen::Vector3d T0 = -dir[bi] * L, T1 = dir[bj] * L;
+        auto hermite = [&](double u) {
+          const double u2 = u * u, u3 = u2 * u;
+          return ((2 * u3 - 3 * u2 + 1) * P0 + (u3 - 2 * u2 + u) * T0 + (-2 * u3 + 3 * u2) * P1 + (u3 - u2) * T1).eval();
+        };
+        auto gap = [&](double u) {
+          const Eigen::Vector3d q = hermite(u) - mid[side];
+          return (q - q.dot(dir[side]) * dir[side]).norm();
+        };
+        double best = 0.0, best_gap = gap(0.0);
+        for (int i = 1; i <= 200; ++i)
+          if (gap(i / 200.0) < best_gap) best_gap = gap(i / 200.0), best = i / 200.0;
+        for (double h = 1.0 / 200; h > 1e-6; h *= 0.5)
+          for (double u : {best - h, best + h})
+            if (u >= 0 && u <= 1 && gap(u) < best_gap) best_gap = gap(u), best = u;
+        if (best > 0.0 && best < 1.0 && best_gap < 1.5 * widest) {
+          centre = hermite(best);
+          placed = true;
+          const int n = std::max(2, static_cast<int>(std::round(L / spacing)));
+          for (int i = static_cast<int>(std::floor(best * n)); i > 0; --i) lead[bi].push_back(hermite(double(i) / n));
+          for (int i = static_cast<int>(std::ceil(best * n)); i < n; ++i) lead[bj].push_back(hermite(double(i) / n));
+          // lead[] excludes the centre and the window start themselves.
+          if (!lead[bi].empty() && (lead[bi].front() - centre).norm() < 0.25 * spacing) lead[bi].erase(lead[bi].begin());
+          if (!lead[bj].empty() && (lead[bj].front() - centre).norm() < 0.25 * spacing) lead[bj].erase(lead[bj].begin());
+        }
+      }
+    }
+    if (!placed || !centre.allFinite() || (centre - nodes[v]).norm() > max_shift * widest) continue;
     nodes[v] = centre;
     // Re-attach: drop each arm's first `cut` of length, run straight from the centre.
     for (size_t k = 0; k < arms.size(); ++k) {
@@ -113,11 +162,19 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
       std::vector<double> rad{a.radii[first]};
       std::vector<double> elong{std::numeric_limits<double>::infinity()};
       const Eigen::Vector3d target = a.points[first];
-      const int steps = std::max(1, static_cast<int>(std::round((target - centre).norm() / spacing)));
-      for (int j = 1; j < steps; ++j) {
-        pts.push_back(centre + (target - centre) * (double(j) / steps));
-        rad.push_back(a.radii[first]);
-        elong.push_back(std::numeric_limits<double>::infinity());
+      if (!lead[k].empty()) {
+        for (const auto& q : lead[k]) {
+          pts.push_back(q);
+          rad.push_back(a.radii[first]);
+          elong.push_back(std::numeric_limits<double>::infinity());
+        }
+      } else {
+        const int steps = std::max(1, static_cast<int>(std::round((target - centre).norm() / spacing)));
+        for (int j = 1; j < steps; ++j) {
+          pts.push_back(centre + (target - centre) * (double(j) / steps));
+          rad.push_back(a.radii[first]);
+          elong.push_back(std::numeric_limits<double>::infinity());
+        }
       }
       pts.insert(pts.end(), a.points.begin() + static_cast<long>(first), a.points.end());
       rad.insert(rad.end(), a.radii.begin() + static_cast<long>(first), a.radii.end());

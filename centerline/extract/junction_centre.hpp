@@ -18,6 +18,6 @@ namespace gw {
 // the centre at `spacing`. `nodes` (junction positions, indexed like tree.nodes) and
 // `branches` (indexed like tree.chains, running from chain.a to chain.b) are updated.
 void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& nodes,
-                        std::vector<RefinedBranch>& branches, double spacing, double max_shift = 4.0);
+                        std::vector<RefinedBranch>& branches, double spacing, double max_shift = 6.0);
 
 }  // namespace gw

@@ -33,7 +33,8 @@ struct CenterlineStats {
 //     centres are terminal candidates), orient outwards;
 //  2. remesh_surface to edges of mean radius / edges_per_radius, so MCF cost depends on
 //     the vessel size rather than on the input tessellation;
-//  3. mcf_skeleton, nodes placed at the centroid of their surface correspondence;
+//  3. mcf_skeleton (its node positions; correspondence centroids scatter when few
+//     surface vertices collapse onto a node, so they are not used);
 //  4. clean_skeleton: prune spurs, merge junction clusters into single bifurcations;
 //  5. the inlet: terminal nearest options.inlet, else the one with the widest branch;
 //     branches are directed distally by walking the tree from it;

@@ -11,7 +11,7 @@ namespace gw {
 
 struct SkeletonNode {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();     // where the flow left it (off-axis)
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // mean of its surface vertices (better centred)
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // mean of its surface vertices (noisy on fine skeletons)
   int surface_vertices = 0;                            // size of the correspondence
 };
 

@@ -180,8 +180,8 @@ SkeletonTree clean_skeleton(const RawSkeleton& raw, const std::function<double(c
     changed = prune_one_spur(w, radius_at, caps, o) || merge_one_junction_pair(w, radius_at, o) ||
               join_one_pass_through(w);
   }
-  // Keep only the component with the longest total length (the skeleton of one surface is
-  // connected, but pruning never disconnects; this guards odd inputs).
+  // Renumber the key nodes still used by a chain (the skeleton of one closed surface is
+  // connected, and pruning only removes terminal chains, so the tree stays connected).
   SkeletonTree tree;
   std::vector<int> index(w.node.size(), -1);
   for (const auto& c : w.chains)

@@ -26,7 +26,7 @@ struct SkeletonCleanup {
   double cap_factor = 2.0;    // a terminal within this * radius of a cap is a real end, never a spur
 };
 
-// Chains between the skeleton's key nodes (node positions: correspondence centroids),
+// Chains between the skeleton's key nodes (at the MCF node positions),
 // then repeatedly: prune the shortest spur, merge close junctions, join chains through
 // nodes left with two chains. Cycles are cut (the chain closing a cycle is dropped).
 // `radius_at(p)` is the vessel radius near p; `caps` the centres of capped holes.

@@ -70,7 +70,7 @@ TEST_CASE("coronary trees: the issue's accuracy targets", "[centerline][anatomy]
     if (coronary_like(a)) check_anatomy(a, true);
 }
 
-TEST_CASE("coronary trees: topology, numbering, mean distance and radius as targeted; junctions within 2 radii",
+TEST_CASE("coronary trees: topology, numbering, mean distance and radius as targeted, junctions within 2 radii",
           "[centerline][anatomy]") {
   for (const auto& a : read_anatomy_index(std::string(GW_SOURCE_DIR) + "/anatomies/index.json"))
     if (coronary_like(a)) check_anatomy(a, false);

@@ -1,7 +1,7 @@
 #pragma once
 // Stage "detect": which parts of the wire are within reach of the vessel wall.
-// Contact points are the free nodes and the element midpoints (so a 2 mm chord cannot cut through a
-// bend of the wall between two nodes); each becomes a unilateral constraint along the wall's inward
+// Contact points are the free nodes and the midpoints of elements longer than 1 mm (so a 2 mm chord
+// cannot cut through a bend of the wall between two nodes); each becomes a unilateral constraint along the wall's inward
 // direction at the start of the step, with two friction directions. The constraint keeps the linearised
 // clearance gap + dt n.v >= 0 at the end of the step. Broad phase: FCL sphere-vs-BVH queries, cached per point
 // (WireState::wall_cache) and redone only when the point has moved more than the cache slack.

@@ -70,53 +70,52 @@ ContactSolveResult solve_contact_impulses(const std::vector<ContactPoint>& conta
   if (ws.w.rows() < dim) {
     const int cap = std::max(dim, 2 * static_cast<int>(ws.w.rows()));
     ws.w.resize(cap, cap);
-    Eigen::VectorXd keep = ws.impulse;
-    ws.bias.resize(cap);
-    ws.impulse = Eigen::VectorXd::Zero(cap);
-    ws.impulse.head(keep.size()) = keep;
   }
-  auto basis = [](const ContactPoint& c) {
-    Eigen::Matrix3d b;
-    b.row(0) = c.n.transpose();
-    b.row(1) = c.t1.transpose();
-    b.row(2) = c.t2.transpose();
-    return b;
-  };
+  if (ws.bias.size() < dim) ws.bias.resize(ws.w.rows());
+  if (ws.impulse.size() < dim) ws.impulse.conservativeResize(ws.w.rows());
+  // Each contact's rows (n, t1, t2) and its nodes' blocks, looked up once.
+  if (ws.basis.size() < static_cast<std::size_t>(m)) ws.basis.resize(m);
+  for (int ci = 0; ci < m; ++ci) {
+    ws.basis[ci].row(0) = contacts[ci].n.transpose();
+    ws.basis[ci].row(1) = contacts[ci].t1.transpose();
+    ws.basis[ci].row(2) = contacts[ci].t2.transpose();
+  }
+  Eigen::Matrix3d x, bx;
   for (int ci = 0; ci < m; ++ci) {
     const ContactPoint& c = contacts[ci];
-    const Eigen::Matrix3d bc = basis(c);
     const int ca[2] = {ws.slot[c.node_a - first_free], c.node_b >= 0 ? ws.slot[c.node_b - first_free] : -1};
     const double cw[2] = {c.wa, c.wb};
     for (int di = ci; di < m; ++di) {
       const ContactPoint& d = contacts[di];
       const int da[2] = {ws.slot[d.node_a - first_free], d.node_b >= 0 ? ws.slot[d.node_b - first_free] : -1};
       const double dwt[2] = {d.wa, d.wb};
-      Eigen::Matrix3d x = Eigen::Matrix3d::Zero();
+      x.setZero();
       for (int p = 0; p < 2; ++p) {
         if (ca[p] < 0) continue;
         for (int qn = 0; qn < 2; ++qn) {
           if (da[qn] < 0) continue;
-          x += (cw[p] * dwt[qn]) * xblock(ws, ca[p], da[qn]);
+          x.noalias() += (cw[p] * dwt[qn]) * xblock(ws, ca[p], da[qn]);
         }
       }
-      const Eigen::Matrix3d wcd = bc * x * basis(d).transpose();
+      bx.noalias() = ws.basis[ci] * x;
+      const Eigen::Matrix3d wcd = bx * ws.basis[di].transpose();
       ws.w.block<3, 3>(3 * ci, 3 * di) = wcd;
       ws.w.block<3, 3>(3 * di, 3 * ci) = wcd.transpose();
     }
+    const ContactPoint& cc = contacts[ci];
+    const Eigen::Vector3d& vc = cc.v_free;
     // End-of-step normal velocity must keep the gap: gap / dt + n.(v_free + dv_c) >= 0.
-    const Eigen::Vector3d& vc = c.v_free;
     // A penetration (gap < 0) is pushed out over a few steps (Baumgarte factor), not in one: a full
     // one-step correction of a deep point throws soft parts of the wire across the vessel.
-    const double gap_rate = c.gap >= 0 ? c.gap / dt : kPenetrationRecovery * c.gap / dt;
-    ws.bias.segment<3>(3 * ci) << gap_rate + c.n.dot(vc), c.t1.dot(vc), c.t2.dot(vc);
+    const double gap_rate = cc.gap >= 0 ? cc.gap / dt : kPenetrationRecovery * cc.gap / dt;
+    ws.bias.segment<3>(3 * ci) << gap_rate + cc.n.dot(vc), cc.t1.dot(vc), cc.t2.dot(vc);
   }
 
-  // Projected Gauss-Seidel.
+  // Projected Gauss-Seidel, warm-started with the caller's normal impulses.
   auto p = ws.impulse.head(dim);
-  if (warm_start) {
-    for (int ci = 0; ci < m; ++ci) p.segment<2>(3 * ci + 1).setZero();  // tangent bases changed
-  } else {
-    p.setZero();
+  for (int ci = 0; ci < m; ++ci) {
+    p[3 * ci] = warm_start ? std::max(0.0, p[3 * ci]) : 0.0;
+    p.segment<2>(3 * ci + 1).setZero();  // tangent bases may have changed
   }
   const auto w = ws.w.topLeftCorner(dim, dim);
   for (int it = 0; it < iterations; ++it) {
@@ -136,7 +135,7 @@ ContactSolveResult solve_contact_impulses(const std::vector<ContactPoint>& conta
     }
     res.iterations = it + 1;
     res.residual = change / largest;
-    if (res.residual < 1e-10) break;
+    if (res.residual < 1e-6) break;
   }
   return res;
 }

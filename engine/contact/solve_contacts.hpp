@@ -23,6 +23,7 @@ struct ContactWorkspace {
   Eigen::MatrixXd w;                 // compliance, 3 rows per contact
   Eigen::VectorXd bias, impulse, h_t_p;  // h_t_p: after contact_velocity_change, A^-1 H^T p
   int first_free = 0;
+  std::vector<Eigen::Matrix3d> basis;  // per contact rows (n, t1, t2)
 };
 
 struct ContactSolveResult {
@@ -35,7 +36,8 @@ void prepare_contact_compliance(const BlockTridiagonal& a, const BlockTridiagona
                                 const std::vector<ContactPoint>& contacts, ContactWorkspace& ws);
 
 // Step 2: W for the contacts' current directions, then projected Gauss-Seidel; impulses in ws.impulse
-// (3 per contact: n, t1, t2). `warm_start` keeps the previous normal impulses as the initial guess.
+// (3 per contact: n, t1, t2). `warm_start`: start from the normal impulses already in ws.impulse
+// (the caller's guess, e.g. the previous sub-step's); otherwise from zero.
 ContactSolveResult solve_contact_impulses(const std::vector<ContactPoint>& contacts, double dt, double mu,
                                           int iterations, bool warm_start, ContactWorkspace& ws);
 

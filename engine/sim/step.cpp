@@ -98,11 +98,18 @@ StepReport substep(const WireModel& model, const VesselScene* scene, const Contr
       const double mu = model.params.friction;
       const int iters = model.params.contact_iterations;
       prepare_contact_compliance(ws.sys.a, ws.factor, k, ws.contacts, ws.cws);
-      ContactSolveResult cr = solve_contact_impulses(ws.contacts, dt, mu, iters, false, ws.cws);
+      // Warm start from the previous sub-step's normal impulses of the same points.
+      const int m = static_cast<int>(ws.contacts.size());
+      if (static_cast<int>(state.contact_impulse.size()) != contact_point_count(model))
+        state.contact_impulse.assign(contact_point_count(model), 0.0);
+      if (ws.cws.impulse.size() < 3 * m) ws.cws.impulse.conservativeResize(3 * m);
+      for (int c = 0; c < m; ++c) ws.cws.impulse[3 * c] = state.contact_impulse[ws.contacts[c].point];
+      ContactSolveResult cr = solve_contact_impulses(ws.contacts, dt, mu, iters, true, ws.cws);
       contact_velocity_change(ws.sys.a, ws.factor, ws.contacts, ws.cws);
       // Second pass with each contact re-linearised at the middle of its constrained motion: the wall
       // normal there makes g(x1) ~ g(x0) + n_mid . (x1 - x0) second-order accurate, so a wire pressed on
       // a curved wall does not chatter sideways between the tangent planes at its start and end points.
+      double turned = 0;
       for (ContactPoint& c : ws.contacts) {
         Eigen::Vector3d v_end = c.v_free + c.wa * ws.cws.h_t_p.segment<3>(6 * (c.node_a - k));
         if (c.node_b >= 0) v_end += c.wb * ws.cws.h_t_p.segment<3>(6 * (c.node_b - k));
@@ -110,13 +117,18 @@ StepReport substep(const WireModel& model, const VesselScene* scene, const Contr
         const double need = model.radius_mm + model.params.contact_margin_mm + dt * v_end.norm();
         const WallDistance wd = cached_wall_distance(model, *scene, state, c.point, mid, need);
         if (wd.triangle < 0) continue;
+        turned = std::max(turned, 1.0 - wd.inward.dot(c.n));
         c.n = wd.inward;
         c.t1 = c.n.unitOrthogonal();
         c.t2 = c.n.cross(c.t1);
       }
-      cr = solve_contact_impulses(ws.contacts, dt, mu, iters, true, ws.cws);
-      contact_velocity_change(ws.sys.a, ws.factor, ws.contacts, ws.cws);
+      if (turned > 1e-5) {  // a normal turned by more than ~0.25 degrees: solve again with the new ones
+        cr = solve_contact_impulses(ws.contacts, dt, mu, iters, true, ws.cws);
+        contact_velocity_change(ws.sys.a, ws.factor, ws.contacts, ws.cws);
+      }
       dv += ws.cws.h_t_p.head(6 * nf);
+      std::fill(state.contact_impulse.begin(), state.contact_impulse.end(), 0.0);
+      for (int c = 0; c < m; ++c) state.contact_impulse[ws.contacts[c].point] = ws.cws.impulse[3 * c];
       rep.contact_iterations = cr.iterations;
       for (std::size_t c = 0; c < ws.contacts.size(); ++c) {
         const ContactPoint& cp = ws.contacts[c];

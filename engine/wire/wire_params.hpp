@@ -25,16 +25,16 @@ struct WireParams {
   double tip_element_length_mm = 0.5;  // finer elements in the distal `fine_region_mm`
   double fine_region_mm = 12.0;
   double friction = 0.1;               // Coulomb mu wire/vessel wall (PTFE/hydrophilic coated ~0.05-0.2)
-  double contact_margin_mm = 0.3;      // detect contacts within this clearance
+  double contact_margin_mm = 0.1;      // detect contacts within this clearance (>> motion per 1 ms sub-step)
   double divergence_margin_mm = 0.5;   // a node further outside the wall than this = diverged
   double inlet_clearance_mm = 1.0;     // wire within this arc past the inlet is not tested (introducer mouth)
-  double contact_slack_mm = 0.5;       // broad-phase cache: candidates gathered this much beyond reach
+  double contact_slack_mm = 1.0;       // broad-phase cache: candidates gathered this much beyond reach
   // Integration sub-step: step() advances the model's control period dt in sub-steps no longer than
   // this. Contact of the stiff wire with curved walls (a tip wedged at a carina) chatters and
   // penetrates beyond ~1.5 ms per linearisation; 1 ms keeps a margin.
   double max_substep_s = 0.001;
   double max_speed_mm_per_s = 1e5;     // any node faster than 100 m/s = exploding simulation
-  int contact_iterations = 40;         // projected Gauss-Seidel sweeps per step
+  int contact_iterations = 100;        // projected Gauss-Seidel sweeps per sub-step (at most)
 };
 
 // Reads a JSON object whose keys are the field names above; missing keys keep defaults.

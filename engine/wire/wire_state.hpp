@@ -40,6 +40,7 @@ struct WireState {
   std::string diverged;                  // non-empty once a step failed: the problem; reset to go on
   std::vector<WallCandidates> wall_cache;  // contact broad-phase cache (nodes, then element midpoints)
   const void* wall_cache_scene = nullptr;  // scene the cache was built for
+  std::vector<double> contact_impulse;     // last normal impulse per contact point (PGS warm start)
 };
 
 // Wire along `direction` with its tip `inserted_length_mm` past `inlet`, rolled by

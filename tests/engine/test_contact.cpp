@@ -86,3 +86,66 @@ TEST_CASE("steerability: in a symmetric Y the proximal roll alone picks the bran
   CHECK(right.max_penetration < 0.05);
   CHECK(left.max_penetration < 0.05);
 }
+
+TEST_CASE("pushing through a curved, out-of-plane vessel: no penetration beyond 0.05 mm, no NaN", "[contact]") {
+  const test::Anatomy a = test::load_anatomy("train/t3_out_of_plane_steep/t3_out_of_plane_steep");
+  const WireModel m = make_wire_model(default_wire_params(), 0.01);
+  const PushResult r = push_through(m, a, 0.0, 20.0, 90.0);
+  INFO("ok " << r.ok << " " << r.problem << " tip " << r.tip.transpose() << " max penetration " << r.max_penetration
+             << " contacts " << r.max_contacts);
+  REQUIRE(r.ok);
+  CHECK(r.max_penetration < 0.05);
+  CHECK(r.max_contacts > 10);  // the wire really rode along the wall
+  CHECK((r.tip - a.inlet).norm() > 50.0);
+}
+
+TEST_CASE("a state copied mid-run steps bit-identically to the original", "[contact][determinism]") {
+  const test::Anatomy a = test::load_anatomy("train/t1_straight_y/t1_straight_y");
+  const WireModel m = make_wire_model(default_wire_params(), 0.01);
+  WireState s = make_initial_state(m, a.inlet, a.direction, 0.4, 2.0);
+  for (int i = 0; i < 150; ++i) REQUIRE(step(m, &a.scene, Control{20.0, 0.5}, s).ok);
+  WireState copy = s;
+  copy.wall_cache.clear();  // the broad-phase cache is only an accelerator
+  for (int i = 0; i < 50; ++i) {
+    REQUIRE(step(m, &a.scene, Control{20.0, -0.3}, s).ok);
+    REQUIRE(step(m, &a.scene, Control{20.0, -0.3}, copy).ok);
+  }
+  for (int i = 0; i < m.nodes; ++i) REQUIRE((s.x[i] - copy.x[i]).norm() == 0.0);
+}
+
+TEST_CASE("a diverged state is reported and refused until reset", "[contact][divergence]") {
+  const test::Anatomy a = test::load_anatomy("train/t1_straight_y/t1_straight_y");
+  const WireModel m = make_wire_model(default_wire_params(), 0.01);
+  WireState s = make_initial_state(m, a.inlet, a.direction, 0.0, 20.0);
+  s.x.back() += Eigen::Vector3d(5.0, 0, 0);  // teleport the tip through the wall
+  const StepReport r = step(m, &a.scene, Control{}, s);
+  CHECK_FALSE(r.ok);
+  CHECK_THAT(r.problem, Catch::Contains("outside the vessel wall"));
+  const StepReport again = step(m, &a.scene, Control{}, s);
+  CHECK_FALSE(again.ok);
+  CHECK_THAT(again.problem, Catch::Contains("reset"));
+  WireState nan = make_initial_state(m, a.inlet, a.direction, 0.0, 20.0);
+  nan.v.back() = Eigen::Vector3d(std::nan(""), 0, 0);
+  const StepReport rn = step(m, nullptr, Control{}, nan);
+  CHECK_FALSE(rn.ok);
+  CHECK_THAT(rn.problem, Catch::Contains("NaN"));
+}
+
+TEST_CASE("long run: 100,000 integration sub-steps in and out of the Y without NaN or penetration", "[.long]") {
+  const test::Anatomy a = test::load_anatomy("train/t1_straight_y/t1_straight_y");
+  const WireModel m = make_wire_model(default_wire_params(), 0.01);
+  WireState s = make_initial_state(m, a.inlet, a.direction, 0.0, 2.0);
+  double worst = 0;
+  const int steps = 100000 / m.substeps;
+  for (int i = 0; i < steps; ++i) {
+    // Push in to ~100 mm and pull back to ~30 mm repeatedly while turning back and forth.
+    const double phase = std::fmod(i * m.dt, 10.0);
+    const Control c{phase < 5.0 ? 15.0 : -15.0, 1.5 * std::sin(0.7 * i * m.dt)};
+    const StepReport r = step(m, &a.scene, c, s);
+    INFO("step " << i << ": " << r.problem);
+    REQUIRE(r.ok);
+    worst = std::max(worst, r.max_penetration_mm);
+  }
+  INFO("max penetration " << worst);
+  CHECK(worst < 0.05);
+}

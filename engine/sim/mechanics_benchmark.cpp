@@ -1,0 +1,63 @@
+#include "engine/sim/mechanics_benchmark.hpp"
+
+#include <chrono>
+
+namespace gw {
+
+InsertionBenchmark run_insertion_benchmark(const WireModel& model, const VesselScene& scene,
+                                           const Eigen::Vector3d& inlet, const Eigen::Vector3d& direction,
+                                           double roll_rad, double push_mm_per_s, double length_mm) {
+  InsertionBenchmark b;
+  WireState state = make_initial_state(model, inlet, direction, roll_rad, 2.0);
+  const Control control{push_mm_per_s, 0.0};
+  double contact_sum = 0;
+  while (state.inserted_length_mm < length_mm) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const StepReport rep = step(model, &scene, control, state);
+    b.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    ++b.control_steps;
+    b.substeps += model.substeps;
+    b.stages.detect_s += rep.timings.detect_s;
+    b.stages.assemble_s += rep.timings.assemble_s;
+    b.stages.solve_s += rep.timings.solve_s;
+    b.stages.constraints_s += rep.timings.constraints_s;
+    contact_sum += rep.contacts;
+    b.max_contacts = std::max(b.max_contacts, rep.contacts);
+    b.max_penetration_mm = std::max(b.max_penetration_mm, rep.max_penetration_mm);
+    b.free_nodes_end = rep.free_nodes;
+    if (!rep.ok) {
+      b.ok = false;
+      b.problem = rep.problem;
+      break;
+    }
+  }
+  b.mean_contacts = b.control_steps > 0 ? contact_sum / b.control_steps : 0;
+  b.inserted_mm = state.inserted_length_mm;
+  b.tip = state.x.back();
+  return b;
+}
+
+std::vector<ScalingPoint> run_scaling_benchmark(const std::vector<int>& node_counts, int substeps) {
+  std::vector<ScalingPoint> out;
+  for (int n : node_counts) {
+    WireParams p = default_wire_params();
+    p.fine_region_mm = 0;  // uniform elements so the node count is exactly n
+    p.element_length_mm = p.length_mm / (n - 1);
+    p.tip_element_length_mm = p.element_length_mm;
+    p.tip_length_mm = std::max(p.tip_length_mm, p.element_length_mm);
+    p.max_substep_s = 0.01;  // time sub-steps one by one
+    const WireModel model = make_wire_model(p, 0.01);
+    WireState state = make_initial_state(model, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), 0.0,
+                                         p.length_mm - 2.0 * p.element_length_mm - 1.0);
+    const Control control{0.0, 2.0};
+    for (int i = 0; i < 20; ++i) step(model, nullptr, control, state);  // warm-up (workspace sizing)
+    int free_nodes = 0;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < substeps; ++i) free_nodes = step(model, nullptr, control, state).free_nodes;
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    out.push_back({model.nodes, free_nodes, 1e6 * s / substeps});
+  }
+  return out;
+}
+
+}  // namespace gw

@@ -1,0 +1,42 @@
+#pragma once
+// Timing runs behind `bench-mechanics`: a full insertion into a vessel and the per-step cost versus the
+// number of nodes. Wall-clock figures, for reporting only (never asserted in tests).
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "engine/scene/vessel_scene.hpp"
+#include "engine/sim/step.hpp"
+
+namespace gw {
+
+struct InsertionBenchmark {
+  int control_steps = 0, substeps = 0;
+  double seconds = 0;                 // wall time inside step()
+  StepTimings stages;                 // summed over the run
+  double mean_contacts = 0;           // per sub-step (last sub-step of each control step)
+  int max_contacts = 0;
+  double max_penetration_mm = 0;
+  double inserted_mm = 0;
+  int free_nodes_end = 0;
+  bool ok = true;
+  std::string problem;
+  Eigen::Vector3d tip = Eigen::Vector3d::Zero();
+};
+
+// Pushes the wire at `push_mm_per_s` from `inlet` along `direction` (roll `roll_rad`) until
+// `length_mm` is inserted or the simulation reports a problem.
+InsertionBenchmark run_insertion_benchmark(const WireModel& model, const VesselScene& scene,
+                                           const Eigen::Vector3d& inlet, const Eigen::Vector3d& direction,
+                                           double roll_rad, double push_mm_per_s, double length_mm);
+
+struct ScalingPoint {
+  int nodes = 0, free_nodes = 0;
+  double us_per_substep = 0;          // assemble + solve of the free wire (no contact)
+};
+
+// Cost per integration sub-step of a uniform 310 mm wire discretised with each node count in
+// `node_counts`, almost fully inserted, rotating in free space.
+std::vector<ScalingPoint> run_scaling_benchmark(const std::vector<int>& node_counts, int substeps);
+
+}  // namespace gw

@@ -18,7 +18,7 @@ CrossSection fit_cross_section(const VesselWall& wall, const Eigen::Vector3d& p,
   for (int k = 0; k < rays; ++k) {
     const double a = 2.0 * M_PI * k / rays;
     const Eigen::Vector2d dir(std::cos(a), std::sin(a));
-    const double d = wall.ray_hit(p, dir.x() * u + dir.y() * v);
+    const double d = wall.ray_hit(p, dir.x() * u + dir.y() * v, max_length);
     if (!(d <= max_length)) {
       out.radius = wall.distance(p);
       return out;

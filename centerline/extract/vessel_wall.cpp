@@ -63,13 +63,18 @@ double VesselWall::distance(const Eigen::Vector3d& p) const {
   return std::sqrt(impl_->tree.squared_distance(point(p)));
 }
 
-double VesselWall::ray_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& d) const {
-  const K::Ray_3 ray(point(origin), K::Vector_3(d.x(), d.y(), d.z()));
+double VesselWall::ray_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& d, double max_length) const {
   std::vector<Primitive::Id> hits;
-  impl_->tree.all_intersected_primitives(ray, std::back_inserter(hits));
+  if (std::isfinite(max_length)) {
+    const K::Segment_3 segment(point(origin), point(origin + d * max_length));
+    impl_->tree.all_intersected_primitives(segment, std::back_inserter(hits));
+  } else {
+    const K::Ray_3 ray(point(origin), K::Vector_3(d.x(), d.y(), d.z()));
+    impl_->tree.all_intersected_primitives(ray, std::back_inserter(hits));
+  }
   double best = std::numeric_limits<double>::infinity();
   for (auto it : hits) best = std::min(best, ray_triangle(origin, d, *it));
-  return best;
+  return best <= max_length ? best : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace gw

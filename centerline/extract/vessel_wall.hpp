@@ -21,9 +21,11 @@ class VesselWall {
   // Distance from `p` to the nearest point of the wall.
   double distance(const Eigen::Vector3d& p) const;
 
-  // Distance along the unit direction `d` from `origin` to the first wall hit, or
-  // +infinity when the ray leaves without a hit.
-  double ray_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& d) const;
+  // Distance along the unit direction `d` from `origin` to the first wall hit within
+  // `max_length`, or +infinity when there is none. A finite `max_length` keeps the
+  // search local (a ray through a whole tree meets many far branches).
+  double ray_hit(const Eigen::Vector3d& origin, const Eigen::Vector3d& d,
+                 double max_length = std::numeric_limits<double>::infinity()) const;
 
  private:
   struct Impl;

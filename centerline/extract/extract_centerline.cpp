@@ -64,7 +64,11 @@ CenterlineGraph extract_centerline(const TriangleMesh& mesh, const CenterlineOpt
         << " mm: the mesh is probably not in millimetres (use --scale, e.g. 1000 for metres)";
     throw std::runtime_error(msg.str());
   }
-  const TriangleMesh coarse = remesh_surface(closed.mesh, stats.mean_radius / opt.edges_per_radius);
+  // Edge length tied to the radius, but never so short that MCF gets more than
+  // `max_skeleton_faces` (an equilateral triangle of edge e has area 0.433 e^2).
+  const double edge = std::max(stats.mean_radius / opt.edges_per_radius,
+                               std::sqrt(closed.area / (0.433 * std::max(1000, opt.max_skeleton_faces))));
+  const TriangleMesh coarse = remesh_surface(closed.mesh, edge);
   stats.skeleton_faces = coarse.F.rows();
   stats.seconds_prepare = seconds_since(t0);
 

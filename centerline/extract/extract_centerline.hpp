@@ -13,7 +13,8 @@ namespace gw {
 struct CenterlineOptions {
   std::optional<Eigen::Vector3d> inlet;  // the terminal nearest this point is the inlet; else the widest
   double spacing = 0.5;                  // output point spacing along branches (mm)
-  double edges_per_radius = 2.0;         // remeshing before MCF: edge length = mean radius / this
+  double edges_per_radius = 2.0;         // remeshing before MCF: edge length = mean radius / this,
+  int max_skeleton_faces = 10000;        //   or longer so that MCF gets at most about this many faces
   double spur_factor = 2.0;              // terminal chains shorter than this * radius are spurs
   double merge_factor = 1.0;             // junctions closer than this * radius become one bifurcation
   int smoothing_iterations = 4;          // Laplacian passes on each branch after re-centring

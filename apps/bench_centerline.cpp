@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
       if (vmtk_results.contains(a.name)) row["vmtk"] = vmtk_row(vmtk_results[a.name], truth);
       out["anatomies"].push_back(row);
     }
-    std::cout << out.dump(1) << "\n";
+    std::cout << out.dump() << "\n";
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";

@@ -35,7 +35,8 @@ void refresh(const VesselScene& scene, const Eigen::Vector3d& p, double radius, 
   c.lower_bounds.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const int f = c.triangles[i];
-    c.lower_bounds[i] = std::max(0.0, (p - scene.face_centres.row(f).transpose()).norm() - scene.face_radii(f));
+    const Eigen::Vector4d& sphere = scene.face_spheres[f];
+    c.lower_bounds[i] = std::max(0.0, (p - sphere.head<3>()).norm() - sphere[3]);
   }
   // Sort both arrays by the lower bound (small lists: insertion sort, no allocation).
   for (std::size_t i = 1; i < n; ++i) {
@@ -77,8 +78,11 @@ WallDistance cached_wall_distance(const WireModel& model, const VesselScene& sce
     far.signed_distance = c.clearance - moved;  // lower bound, >= need
     return far;
   }
-  WallDistance wd = wall_distance_among(scene, p, c.triangles, std::numeric_limits<double>::infinity(),
-                                        &c.lower_bounds, moved);
+  // Only distances below `cutoff` matter: contacts need `need`, the divergence check needs to see a
+  // point that is more than the divergence margin outside. Farther triangles are not scanned.
+  const double cutoff = std::max(need, model.params.divergence_margin_mm + model.radius_mm);
+  WallDistance wd = wall_distance_among(scene, p, c.triangles, cutoff, &c.lower_bounds, moved);
+  if (wd.triangle < 0) wd.signed_distance = cutoff;  // nothing within the cutoff: well inside
   return wd;
 }
 

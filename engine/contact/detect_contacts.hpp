@@ -32,8 +32,9 @@ Eigen::Vector3d contact_point_position(const WireModel& model, const std::vector
 bool contact_point_active(const WireModel& model, const WireState& state, int point);
 
 // Signed distance (> 0 inside) from `p` (contact point `point`) to the wall, using and refreshing the
-// state's cache. Exact whenever the distance is below `need`; otherwise a lower bound >= need on the
-// correct side (triangle = -1). Points outside the vessel are always exact.
+// state's cache. Exact whenever the distance is below max(need, divergence margin + radius); otherwise
+// a lower bound >= need, reported as inside (triangle = -1): a point cannot get farther outside than
+// that without first being seen within it.
 WallDistance cached_wall_distance(const WireModel& model, const VesselScene& scene, WireState& state, int point,
                                   const Eigen::Vector3d& p, double need);
 

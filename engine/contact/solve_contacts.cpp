@@ -122,7 +122,8 @@ ContactSolveResult solve_contact_impulses(const std::vector<ContactPoint>& conta
     double change = 0, largest = 1e-300;
     for (int ci = 0; ci < m; ++ci) {
       const int r = 3 * ci;
-      const Eigen::Vector3d u = w.middleRows<3>(r) * p + ws.bias.segment<3>(r);
+      // W is symmetric: read its columns (contiguous in column-major storage) instead of its rows.
+      const Eigen::Vector3d u = w.middleCols<3>(r).transpose() * p + ws.bias.segment<3>(r);
       const Eigen::Vector3d old = p.segment<3>(r);
       double pn = std::max(0.0, old[0] - u[0] / w(r, r));
       Eigen::Vector2d pt(old[1] - u[1] / w(r + 1, r + 1), old[2] - u[2] / w(r + 2, r + 2));

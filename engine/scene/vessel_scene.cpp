@@ -44,6 +44,10 @@ VesselScene make_vessel_scene(const TriangleMesh& mesh) {
     const Eigen::Vector3d centre = (a + b + c) / 3.0;
     s.face_centres.row(f) = centre.transpose();
     s.face_radii(f) = std::max({(a - centre).norm(), (b - centre).norm(), (c - centre).norm()});
+    s.face_spheres.emplace_back(centre.x(), centre.y(), centre.z(), s.face_radii(f));
+    Eigen::Matrix3d corners;
+    corners << a, b, c;
+    s.face_corners.push_back(corners);
     volume += a.dot(b.cross(c)) / 6.0;
     tris[f] = fcl::Triangle(mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2));
   }
@@ -117,11 +121,12 @@ WallDistance wall_distance_among(const VesselScene& scene, const Eigen::Vector3d
       if (lb > 0 && lb * lb > best_d2 * (1 + 1e-9) + 1e-18) break;  // sorted: nothing later is closer
     }
     // Early out: the triangle lies inside its bounding sphere.
-    const double dc = (p - scene.face_centres.row(f).transpose()).norm() - scene.face_radii(f);
+    const Eigen::Vector4d& sphere = scene.face_spheres[f];
+    const double dc = (p - sphere.head<3>()).norm() - sphere[3];
     if (dc > 0 && dc * dc > best_d2 * (1 + 1e-12)) continue;
     int region = 0;
-    const Eigen::Vector3d c =
-        closest_point_on_triangle(p, V.row(F(f, 0)), V.row(F(f, 1)), V.row(F(f, 2)), region);
+    const Eigen::Matrix3d& tri = scene.face_corners[f];
+    const Eigen::Vector3d c = closest_point_on_triangle(p, tri.col(0), tri.col(1), tri.col(2), region);
     const Eigen::Vector3d diff = p - c;
     const double d2 = diff.squaredNorm();
     const Eigen::Vector3d n = scene.face_normals.row(f).transpose();

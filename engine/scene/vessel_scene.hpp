@@ -18,6 +18,8 @@ struct VesselScene {
   Eigen::MatrixX3d vertex_normals;      // angle-weighted unit outward normals (smooth contact normals)
   Eigen::MatrixX3d face_centres;        // bounding-sphere centres (centroids)
   Eigen::VectorXd face_radii;           // bounding-sphere radii around the centroids
+  std::vector<Eigen::Vector4d> face_spheres;  // (centre, radius) packed per face for the hot loop
+  std::vector<Eigen::Matrix3d> face_corners;  // columns a, b, c per face (contiguous)
   std::shared_ptr<const VesselSceneBvh> bvh;
 };
 

@@ -28,7 +28,7 @@ struct WireParams {
   double contact_margin_mm = 0.1;      // detect contacts within this clearance (>> motion per 1 ms sub-step)
   double divergence_margin_mm = 0.5;   // a node further outside the wall than this = diverged
   double inlet_clearance_mm = 1.0;     // wire within this arc past the inlet is not tested (introducer mouth)
-  double contact_slack_mm = 1.0;       // broad-phase cache: candidates gathered this much beyond reach
+  double contact_slack_mm = 0.5;       // broad-phase cache: candidates gathered this much beyond reach
   // Integration sub-step: step() advances the model's control period dt in sub-steps no longer than
   // this. Contact of the stiff wire with curved walls (a tip wedged at a carina) chatters and
   // penetrates beyond ~1.5 ms per linearisation; 1 ms keeps a margin.

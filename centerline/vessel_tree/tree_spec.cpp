@@ -22,7 +22,7 @@ Eigen::Vector3d vec3(const json& j, const std::string& what) {
   return {number(j[0], what), number(j[1], what), number(j[2], what)};
 }
 
-BranchSpec parse_branch(const json& j, int index, int count) {
+BranchSpec parse_branch(const json& j, int index) {
   const std::string where = "branches[" + std::to_string(index) + "]";
   if (!j.is_object()) throw SpecError(where + " must be an object");
   BranchSpec b;
@@ -35,7 +35,6 @@ BranchSpec parse_branch(const json& j, int index, int count) {
   if (index > 0 && (b.parent < 0 || b.parent >= index))
     throw SpecError(where + " ('" + b.name + "'): parent must be the index of an earlier branch (0.." +
                     std::to_string(index - 1) + "), got " + std::to_string(b.parent));
-  (void)count;
   if (!j.contains("points") || !j["points"].is_array() || j["points"].size() < 2)
     throw SpecError(where + " ('" + b.name + "'): points must be an array of at least 2 [x,y,z] points");
   for (size_t i = 0; i < j["points"].size(); ++i)
@@ -103,7 +102,7 @@ TreeSpec parse_tree_spec(const std::string& text) {
   if (!j.contains("branches") || !j["branches"].is_array() || j["branches"].empty())
     throw SpecError("branches must be a non-empty array");
   const int n = static_cast<int>(j["branches"].size());
-  for (int i = 0; i < n; ++i) s.branches.push_back(parse_branch(j["branches"][i], i, n));
+  for (int i = 0; i < n; ++i) s.branches.push_back(parse_branch(j["branches"][i], i));
   if (j.contains("deformation")) s.deformation = parse_deformation(j["deformation"]);
   return s;
 }

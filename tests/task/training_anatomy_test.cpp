@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
+#include <thread>
 
 #include "engine/task/episode.hpp"
 
@@ -52,4 +53,22 @@ TEST_CASE("training anatomies: same seed and actions give the same trajectory bi
     REQUIRE(a.size() == b.size());
     CHECK(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
   }
+}
+
+TEST_CASE("training anatomies: episodes in parallel threads share the task safely", "[task][training]") {
+  // The server runs one episode per connection thread over one constant task (scene, courses).
+  const gw::NavigationTask& task = training_task();
+  auto run = [&](int anatomy, std::vector<double>& trace) {
+    gw::EpisodeState s = gw::reset_episode(task, anatomy, 1, 99);
+    for (int k = 0; k < 15 && !s.done; ++k) trace.push_back(gw::step_episode(task, s, std::sin(0.5 * k)).reward);
+  };
+  std::vector<double> seq0, seq1, par0, par1;
+  run(1, seq0);
+  run(2, seq1);
+  std::thread t0([&] { run(1, par0); });
+  std::thread t1([&] { run(2, par1); });
+  t0.join();
+  t1.join();
+  CHECK(par0 == seq0);
+  CHECK(par1 == seq1);
 }

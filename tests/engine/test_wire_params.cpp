@@ -26,7 +26,7 @@ TEST_CASE("the shipped 0.014 inch wire JSON loads and matches the defaults", "[p
   CHECK(p.contact_slack_mm == d.contact_slack_mm);
   CHECK(p.max_substep_s == d.max_substep_s);
   const WireModel m = make_wire_model(p, 0.01);
-  CHECK(m.substeps == 10);
+  CHECK(m.substeps == 20);
   CHECK(m.arc_from_tip.front() == Approx(310.0));
   CHECK(m.length.back() == Approx(0.5));  // finer elements at the tip
   CHECK(m.length.front() == Approx(2.0));

@@ -63,6 +63,7 @@ int main(int argc, char** argv) {
           {"substeps_per_s", b.substeps / b.seconds},
           {"mean_contacts", b.mean_contacts},
           {"max_contacts", b.max_contacts},
+          {"mean_max_pgs_sweeps", b.mean_pgs_sweeps},
           {"max_penetration_mm", b.max_penetration_mm},
           {"us_per_substep_by_stage", stages},
           {"tip", {b.tip.x(), b.tip.y(), b.tip.z()}}}},

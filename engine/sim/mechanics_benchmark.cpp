@@ -10,7 +10,7 @@ InsertionBenchmark run_insertion_benchmark(const WireModel& model, const VesselS
   InsertionBenchmark b;
   WireState state = make_initial_state(model, inlet, direction, roll_rad, 2.0);
   const Control control{push_mm_per_s, 0.0};
-  double contact_sum = 0;
+  double contact_sum = 0, sweep_sum = 0;
   while (state.inserted_length_mm < length_mm) {
     const auto t0 = std::chrono::steady_clock::now();
     const StepReport rep = step(model, &scene, control, state);
@@ -22,6 +22,7 @@ InsertionBenchmark run_insertion_benchmark(const WireModel& model, const VesselS
     b.stages.solve_s += rep.timings.solve_s;
     b.stages.constraints_s += rep.timings.constraints_s;
     contact_sum += rep.contacts;
+    sweep_sum += rep.contact_iterations;
     b.max_contacts = std::max(b.max_contacts, rep.contacts);
     b.max_penetration_mm = std::max(b.max_penetration_mm, rep.max_penetration_mm);
     b.free_nodes_end = rep.free_nodes;
@@ -32,6 +33,7 @@ InsertionBenchmark run_insertion_benchmark(const WireModel& model, const VesselS
     }
   }
   b.mean_contacts = b.control_steps > 0 ? contact_sum / b.control_steps : 0;
+  b.mean_pgs_sweeps = b.control_steps > 0 ? sweep_sum / b.control_steps : 0;
   b.inserted_mm = state.inserted_length_mm;
   b.tip = state.x.back();
   return b;

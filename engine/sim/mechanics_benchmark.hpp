@@ -16,6 +16,7 @@ struct InsertionBenchmark {
   StepTimings stages;                 // summed over the run
   double mean_contacts = 0;           // per sub-step (last sub-step of each control step)
   int max_contacts = 0;
+  double mean_pgs_sweeps = 0;         // per control step: the most sweeps any of its sub-steps used
   double max_penetration_mm = 0;
   double inserted_mm = 0;
   int free_nodes_end = 0;

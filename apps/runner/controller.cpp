@@ -1,0 +1,87 @@
+#include "apps/runner/controller.hpp"
+
+#include <Eigen/Core>
+#include <cstdlib>
+#include <stdexcept>
+
+#include "policy/load_actor.hpp"
+
+namespace gw {
+namespace {
+
+class PolicyController final : public Controller {
+ public:
+  explicit PolicyController(const std::string& path) : actor_(load_actor(path)) {
+    if (actor_.obs_size() != kObservationSize)
+      throw std::runtime_error(path + ": the actor takes " + std::to_string(actor_.obs_size()) +
+                               " observations, the task gives " + std::to_string(kObservationSize) + " (" +
+                               kObservationLayout + ")");
+    if (actor_.obs_layout() != kObservationLayout)
+      throw std::runtime_error(path + ": the actor was trained on observation layout '" + actor_.obs_layout() +
+                               "', the task gives '" + kObservationLayout + "'");
+    if (actor_.action_size() != 1)
+      throw std::runtime_error(path + ": the actor outputs " + std::to_string(actor_.action_size()) +
+                               " actions, the task takes 1 (rotation)");
+    obs_.resize(kObservationSize);
+    action_.resize(1);
+  }
+  const std::string& name() const override { return name_; }
+  double act(const Observation& obs) override {
+    for (int i = 0; i < kObservationSize; ++i) obs_[i] = static_cast<float>(obs[static_cast<std::size_t>(i)]);
+    actor_.act(obs_, action_);
+    return static_cast<double>(action_[0]);
+  }
+
+ private:
+  std::string name_ = "sac-policy";
+  ActorMLP actor_;
+  Eigen::VectorXf obs_, action_;
+};
+
+class PushOnlyController final : public Controller {
+ public:
+  const std::string& name() const override { return name_; }
+  double act(const Observation&) override { return 0.0; }
+
+ private:
+  std::string name_ = "push-only";
+};
+
+class ScriptedOmegaController final : public Controller {
+ public:
+  explicit ScriptedOmegaController(double release) : release_(release) {}
+  const std::string& name() const override { return name_; }
+  double act(const Observation& obs) override {
+    // omega = +1: the tip bends straight at the wrong branch; -1: straight away from it. Turning
+    // one way at a constant rate sweeps the bend direction round until omega drops below release.
+    return obs[obs_index::kOmega] > release_ ? 1.0 : 0.0;
+  }
+
+ private:
+  std::string name_ = "scripted-omega";
+  double release_;
+};
+
+}  // namespace
+
+std::unique_ptr<Controller> make_policy_controller(const std::string& actor_path) {
+  return std::make_unique<PolicyController>(actor_path);
+}
+std::unique_ptr<Controller> make_push_only_controller() { return std::make_unique<PushOnlyController>(); }
+std::unique_ptr<Controller> make_scripted_omega_controller(double release) {
+  return std::make_unique<ScriptedOmegaController>(release);
+}
+
+std::unique_ptr<Controller> make_controller(const std::string& kind, const std::string& actor_path) {
+  if (kind == "policy" || kind == "sac-policy") return make_policy_controller(actor_path);
+  if (kind == "push-only") return make_push_only_controller();
+  if (kind == "scripted-omega") return make_scripted_omega_controller();
+  throw std::invalid_argument("unknown controller '" + kind + "' (expected policy, push-only or scripted-omega)");
+}
+
+std::string default_policy_path() {
+  if (const char* env = std::getenv("GW_POLICY"); env && *env) return env;
+  return std::string(GW_SOURCE_DIR) + "/policy/trained/sac_actor.json";
+}
+
+}  // namespace gw

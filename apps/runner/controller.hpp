@@ -1,0 +1,37 @@
+#pragma once
+// Who turns the wire during an episode: the SAC actor (Eigen runtime) or one of the two
+// baselines the results table compares it with. The task decides when an action is applied
+// (near bifurcations in trees); a controller only maps an observation to a rotation in [-1, 1].
+#include <memory>
+#include <string>
+
+#include "engine/task/observation.hpp"
+
+namespace gw {
+
+class Controller {
+ public:
+  virtual ~Controller() = default;
+  virtual const std::string& name() const = 0;
+  // Rotation action in [-1, 1] for observation `obs` (layout guidewire-nav/obs/1).
+  virtual double act(const Observation& obs) = 0;
+};
+
+// The exported SAC actor at `actor_path`. Throws std::runtime_error naming the file when it cannot
+// be loaded or was trained on another observation layout or size.
+std::unique_ptr<Controller> make_policy_controller(const std::string& actor_path);
+
+// Lower anchor 1: never rotates (the wire goes where its start orientation and the wall send it).
+std::unique_ptr<Controller> make_push_only_controller();
+
+// Lower anchor 2: a hand-written rule on omega (tip curvature vs wrong-branch direction): rotate at
+// full rate while the tip bends towards the wrong branch (omega > release), stop once it points away.
+std::unique_ptr<Controller> make_scripted_omega_controller(double release = -0.7);
+
+// "policy" (needs `actor_path`) | "push-only" | "scripted-omega"; throws std::invalid_argument otherwise.
+std::unique_ptr<Controller> make_controller(const std::string& kind, const std::string& actor_path);
+
+// The shipped default actor: $GW_POLICY if set, else policy/trained/sac_actor.json of the source tree.
+std::string default_policy_path();
+
+}  // namespace gw

@@ -1,0 +1,43 @@
+#pragma once
+// Batches of episodes: which (target, seed) pairs `--target N|all|random --episodes K --seed S`
+// means, running them on several threads, and the JSON summary navigate --json prints.
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "apps/report/trajectory.hpp"
+#include "apps/runner/controller.hpp"
+#include "apps/runner/run_episode.hpp"
+#include "engine/task/navigation_task.hpp"
+
+namespace gw {
+
+struct EpisodeRequest {
+  int anatomy = 0;
+  int target_id = 0;
+  std::uint64_t seed = 0;
+};
+
+// Episode k gets seed `seed + k`, so any episode of a batch is re-run alone with --episodes 1
+// --seed S+k. Targets: "N" -> K episodes on N; "all" -> K episodes on every target (target-major);
+// "random" -> K episodes, each target drawn from a generator seeded with `seed`.
+// Throws std::invalid_argument naming the valid targets for an unknown number or bad spec.
+std::vector<EpisodeRequest> plan_episodes(const NavigationTask& task, int anatomy, const std::string& target_spec,
+                                          int episodes, std::uint64_t seed);
+
+// Runs every request (results in request order). Each worker thread gets its own controller from
+// `make_controller`; `progress(done, total)` is called from the workers after each episode.
+std::vector<EpisodeTrace> run_batch(const NavigationTask& task, const std::vector<EpisodeRequest>& requests,
+                                    const std::function<std::unique_ptr<Controller>()>& make_controller,
+                                    int threads, const TraceOptions& options,
+                                    const std::function<void(int, int)>& progress = {});
+
+// {"episodes", "successes", "success_rate", "outcomes": {outcome: count}, "results": [per episode:
+// anatomy, controller, target, seed, outcome, detail, steps, sim_time_s]}.
+nlohmann::json summarize_episodes(const std::vector<EpisodeTrace>& traces);
+
+}  // namespace gw

@@ -1,0 +1,43 @@
+#pragma once
+// The paper's results table (Scarponi et al., section 3) on our anatomies: every row run with the
+// SAC policy and beside it the two baselines (push-only, scripted omega), next to the paper's figure.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace gw {
+
+struct EvaluationRow {
+  std::string name;                   // e.g. "coronary-like"
+  std::vector<std::string> anatomies; // anatomy names in anatomies/index.json; episodes spread evenly
+  int episodes = 50;
+  double paper_success = 0.0;         // the paper's success rate for this case, in [0, 1]
+  bool base_policy = false;           // sensitivity rows: the policy trained on sensitivity/base only
+};
+
+// The rows of the paper's table, in its order.
+std::vector<EvaluationRow> paper_table();
+
+struct EvaluationOptions {
+  std::string policy;                 // actor JSON of the shipped policy
+  std::string base_policy;            // actor JSON trained on sensitivity/base only ("" = skip those rows)
+  std::string index_path;             // anatomies/index.json
+  std::vector<std::string> controllers = {"policy", "push-only", "scripted-omega"};
+  bool extract_centerlines = true;    // zero-shot pipeline (CGAL MCF); false = ground-truth centerlines
+  double episode_scale = 1.0;         // multiply every row's episode count (quick looks: 0.1)
+  std::uint64_t seed = 0;
+  int threads = 1;
+  bool progress = false;              // a line per finished row on stderr
+};
+
+// Runs the rows and returns {"rows": [{name, episodes, paper, results: {controller: summary}, notes}],
+// "settings": ...}. Rows whose anatomy or policy is missing are kept with a "skipped" reason.
+nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const EvaluationOptions& options);
+
+// The table as Markdown: case | episodes | SAC | push-only | scripted omega | paper, then per row the
+// failure modes seen (outcome counts) so a short row says why, not only how much.
+std::string evaluation_to_markdown(const nlohmann::json& evaluation);
+
+}  // namespace gw

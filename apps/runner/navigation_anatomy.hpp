@@ -1,0 +1,37 @@
+#pragma once
+// From a vessel surface file to what the navigation task needs: the validated mesh, its wall
+// (VesselScene) and its centerline graph — extracted with CGAL MCF through the on-disk cache, or
+// read from a given centerline JSON (e.g. an anatomy's ground truth).
+#include <optional>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "engine/mesh/triangle_mesh.hpp"
+#include "engine/task/anatomy.hpp"
+
+namespace gw {
+
+struct NavigationAnatomyOptions {
+  double scale = 1.0;                     // mesh units -> mm
+  std::optional<Eigen::Vector3d> inlet;   // picks the inlet terminal (else the widest one)
+  std::string centerline_path;            // non-empty: use this graph instead of extracting
+  bool use_cache = true;
+};
+
+struct NavigationAnatomy {
+  TriangleMesh mesh;
+  Anatomy anatomy;
+  bool centerline_from_cache = false;
+  double centerline_seconds = 0.0;        // extraction (or cache read) time
+  std::string centerline_source;          // "extracted" | "cache" | the JSON path
+};
+
+// Throws MeshError / std::runtime_error "<file>: <problem>" for unreadable or invalid meshes and
+// for a surface the extraction cannot handle; std::invalid_argument when the graph has no target.
+NavigationAnatomy load_navigation_anatomy(const std::string& mesh_path, const NavigationAnatomyOptions& options = {});
+
+// "coronary" for ".../coronary.stl".
+std::string anatomy_name_from_path(const std::string& mesh_path);
+
+}  // namespace gw

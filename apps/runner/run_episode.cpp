@@ -1,0 +1,72 @@
+#include "apps/runner/run_episode.hpp"
+
+#include "engine/wire/wire_queries.hpp"
+
+namespace gw {
+namespace {
+
+void record_frame(const NavigationTask& task, const EpisodeState& s, double action, bool in_control, int frame,
+                  const TraceOptions& options, EpisodeTrace& trace) {
+  trace.time_s.push_back(s.wire.time);
+  trace.tip.push_back(s.tip);
+  trace.action.push_back(action);
+  trace.agent_in_control.push_back(in_control);
+  if (options.wire_shape_every > 0 && frame % options.wire_shape_every == 0) {
+    trace.wire_shapes.push_back(inserted_node_positions(task.wire, s.wire));
+    trace.wire_shape_frame.push_back(frame);
+  }
+}
+
+// Maps the task's end flags onto the trace outcomes the report and the summary count.
+void set_outcome(const StepOutcome& out, EpisodeTrace& trace) {
+  const StepInfo& i = out.info;
+  const std::string where = "goal " + std::to_string(i.goal + 1) + " of " + std::to_string(i.goals);
+  if (i.success) {
+    trace.outcome = "success";
+  } else if (i.wrong_branch) {
+    trace.outcome = "wrong_branch";
+    trace.detail = "entered a wrong branch before " + where;
+  } else if (!i.problem.empty() && !i.time_limit) {
+    trace.outcome = "diverged";
+    trace.detail = i.problem;
+  } else if (i.stuck) {
+    trace.outcome = "stuck";
+    trace.detail = "no progress at " + std::to_string(static_cast<int>(i.progress_mm)) + " mm along the path (" +
+                   where + ")";
+  } else {
+    trace.outcome = "timeout";
+    trace.detail = i.time_limit ? i.problem : i.wire_exhausted ? "wire fully inserted" : "step limit reached";
+  }
+}
+
+}  // namespace
+
+EpisodeTrace run_episode(const NavigationTask& task, int anatomy, int target_id, std::uint64_t seed,
+                         Controller& controller, const TraceOptions& options) {
+  EpisodeState s = reset_episode(task, anatomy, target_id, seed);
+  EpisodeTrace trace;
+  trace.anatomy = task.anatomies[static_cast<std::size_t>(s.anatomy)].name;
+  trace.controller = controller.name();
+  trace.target_id = s.target_id;
+  trace.seed = seed;
+  int frame = 0;
+  record_frame(task, s, 0.0, s.in_control, frame, options, trace);
+  for (;;) {
+    const bool in_control = s.in_control;
+    const double action = in_control ? controller.act(s.obs) : 0.0;
+    const StepOutcome out = step_episode(task, s, action, {});
+    ++frame;
+    record_frame(task, s, action, in_control, frame, options, trace);
+    if (out.terminated || out.truncated) {
+      set_outcome(out, trace);
+      break;
+    }
+  }
+  if ((trace.wire_shape_frame.empty() || trace.wire_shape_frame.back() != frame)) {
+    trace.wire_shapes.push_back(inserted_node_positions(task.wire, s.wire));
+    trace.wire_shape_frame.push_back(frame);
+  }
+  return trace;
+}
+
+}  // namespace gw

@@ -1,0 +1,25 @@
+#pragma once
+// One navigation episode driven by a controller, recorded as an EpisodeTrace (apps/report):
+// reset -> (observe -> act -> step) until the task says terminated or truncated.
+#include <cstdint>
+
+#include "apps/report/trajectory.hpp"
+#include "apps/runner/controller.hpp"
+#include "engine/task/episode.hpp"
+#include "engine/task/navigation_task.hpp"
+
+namespace gw {
+
+struct TraceOptions {
+  // Keep the inserted wire polyline every this many env steps, and the last one; 0 = only the last.
+  // Tip, time and action are always kept: a few hundred small entries per episode.
+  int wire_shape_every = 25;
+};
+
+// Runs target `target_id` of anatomy `anatomy` (indices into task.anatomies) from `seed` to its end.
+// The trace's outcome is "success" | "wrong_branch" | "stuck" | "timeout" | "diverged" with a detail
+// (which goal was missed, the physics problem). Throws std::invalid_argument for a bad anatomy/target.
+EpisodeTrace run_episode(const NavigationTask& task, int anatomy, int target_id, std::uint64_t seed,
+                         Controller& controller, const TraceOptions& options = {});
+
+}  // namespace gw

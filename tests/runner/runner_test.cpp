@@ -1,0 +1,179 @@
+// What navigate and evaluate share: planning batches (--target N|all|random), running them on
+// threads with the same result as one thread, the JSON summary, output files, and the table.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+
+#include "apps/runner/controller.hpp"
+#include "apps/runner/episode_batch.hpp"
+#include "apps/runner/evaluation_table.hpp"
+#include "apps/runner/navigation_anatomy.hpp"
+#include "apps/runner/navigation_outputs.hpp"
+#include "apps/runner/run_episode.hpp"
+#include "engine/task/navigation_task.hpp"
+#include "engine/wire/wire_params.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kT1 = std::string(GW_SOURCE_DIR) + "/anatomies/train/t1_straight_y/t1_straight_y";
+
+// t1 with its ground-truth centerline (no CGAL in the loop) and a short step limit, so episodes
+// end by truncation after a second of wall time.
+struct ShortT1 {
+  gw::NavigationAnatomy nav;
+  gw::NavigationTask task;
+  explicit ShortT1(int max_steps = 25)
+      : nav(gw::load_navigation_anatomy(kT1 + ".stl", {1.0, std::nullopt, kT1 + ".truth.json", false})),
+        task(gw::make_navigation_task(config(max_steps), gw::default_wire_params(), {nav.anatomy})) {}
+  static gw::TaskConfig config(int max_steps) {
+    gw::TaskConfig c;
+    c.max_steps = max_steps;
+    return c;
+  }
+};
+
+fs::path scratch_dir(const std::string& name) {
+  const fs::path d = fs::path(GW_BINARY_DIR) / "test_runner_scratch" / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("plan_episodes: targets and seeds of a batch", "[runner]") {
+  const ShortT1 t1;
+  REQUIRE(t1.nav.anatomy.graph.targets.size() == 2);
+
+  const auto one = gw::plan_episodes(t1.task, 0, "2", 3, 10);
+  REQUIRE(one.size() == 3);
+  for (std::size_t k = 0; k < one.size(); ++k) {
+    CHECK(one[k].target_id == 2);
+    CHECK(one[k].seed == 10 + k);  // episode k of a batch is re-run alone with --seed S+k
+  }
+
+  const auto all = gw::plan_episodes(t1.task, 0, "all", 2, 0);
+  REQUIRE(all.size() == 4);
+  CHECK(all[0].target_id == 1);
+  CHECK(all[1].target_id == 1);
+  CHECK(all[2].target_id == 2);
+  CHECK(all[3].seed == 3);
+
+  const auto random_a = gw::plan_episodes(t1.task, 0, "random", 40, 7);
+  const auto random_b = gw::plan_episodes(t1.task, 0, "random", 40, 7);
+  int ones = 0;
+  for (std::size_t k = 0; k < random_a.size(); ++k) {
+    CHECK(random_a[k].target_id == random_b[k].target_id);
+    CHECK((random_a[k].target_id == 1 || random_a[k].target_id == 2));
+    ones += random_a[k].target_id == 1;
+  }
+  CHECK(ones > 5);  // both targets drawn
+  CHECK(ones < 35);
+}
+
+TEST_CASE("plan_episodes: unknown targets and bad counts are clear errors", "[runner]") {
+  const ShortT1 t1;
+  CHECK_THROWS_WITH(gw::plan_episodes(t1.task, 0, "3", 1, 0),
+                    Catch::Contains("target 3 does not exist") && Catch::Contains("1..2"));
+  CHECK_THROWS_WITH(gw::plan_episodes(t1.task, 0, "0", 1, 0), Catch::Contains("does not exist"));
+  CHECK_THROWS_WITH(gw::plan_episodes(t1.task, 0, "two", 1, 0), Catch::Contains("'two' is not a number"));
+  CHECK_THROWS_WITH(gw::plan_episodes(t1.task, 0, "1x", 1, 0), Catch::Contains("not a number"));
+  CHECK_THROWS_WITH(gw::plan_episodes(t1.task, 0, "1", 0, 0), Catch::Contains("at least 1"));
+  CHECK_THROWS_AS(gw::plan_episodes(t1.task, 1, "1", 1, 0), std::invalid_argument);
+}
+
+TEST_CASE("controllers: names and missing policy files", "[runner]") {
+  CHECK(gw::make_controller("push-only", "")->act(gw::Observation{}) == 0.0);
+  CHECK_THROWS_WITH(gw::make_controller("pid", ""), Catch::Contains("'pid'"));
+  CHECK_THROWS_WITH(gw::make_controller("policy", "/nonexistent/actor.json"),
+                    Catch::Contains("/nonexistent/actor.json"));
+}
+
+TEST_CASE("run_batch: threads give the same episodes as one thread; summary counts them", "[runner]") {
+  const ShortT1 t1;
+  const auto requests = gw::plan_episodes(t1.task, 0, "all", 2, 5);
+  auto scripted = [] { return gw::make_scripted_omega_controller(); };
+  gw::TraceOptions options;
+  options.wire_shape_every = 10;
+  int calls = 0;
+  const auto serial = gw::run_batch(t1.task, requests, scripted, 1, options, [&](int done, int total) {
+    ++calls;
+    CHECK(done <= total);
+  });
+  CHECK(calls == 4);
+  const auto threaded = gw::run_batch(t1.task, requests, scripted, 3, options);
+  REQUIRE(serial.size() == 4);
+  REQUIRE(threaded.size() == 4);
+  for (std::size_t k = 0; k < serial.size(); ++k) {
+    CHECK(serial[k].seed == requests[k].seed);
+    CHECK(serial[k].target_id == requests[k].target_id);
+    CHECK(serial[k].outcome == "timeout");  // 25 steps cannot reach a target 60+ mm away
+    CHECK(serial[k].time_s.size() == 26);   // the reset frame and 25 steps
+    REQUIRE(serial[k].tip.size() == threaded[k].tip.size());
+    CHECK(serial[k].tip.back() == threaded[k].tip.back());  // bit for bit
+    CHECK(serial[k].action == threaded[k].action);
+    CHECK(serial[k].wire_shapes.size() >= 3);
+  }
+  // different seeds start with a different wire rotation
+  CHECK(serial[0].tip.back() != serial[1].tip.back());
+
+  const nlohmann::json summary = gw::summarize_episodes(serial);
+  CHECK(summary["episodes"] == 4);
+  CHECK(summary["successes"] == 0);
+  CHECK(summary["outcomes"]["timeout"] == 4);
+  CHECK(summary["outcomes"]["success"] == 0);
+  CHECK(summary["results"][2]["target"] == 2);
+  CHECK(summary["results"][2]["steps"] == 25);
+}
+
+TEST_CASE("navigation outputs: trajectories, VTK and a biplane PNG per target", "[runner]") {
+  const ShortT1 t1(12);
+  const auto traces = gw::run_batch(t1.task, gw::plan_episodes(t1.task, 0, "1", 1, 0),
+                                    [] { return gw::make_push_only_controller(); }, 1, {});
+  const fs::path dir = scratch_dir("outputs");
+  const auto files = gw::write_navigation_outputs(dir.string(), t1.nav, traces, {"test"});
+  for (const char* name : {"vessel.vtp", "centerline.vtp", "target1_path.vtp", "target1.png", "episode0_target1.json",
+                           "episode0_target1.vtp"}) {
+    INFO(name);
+    CHECK(fs::exists(dir / name));
+    CHECK(fs::file_size(dir / name) > 100);
+  }
+  CHECK(files.size() >= 6);
+  std::ifstream png(dir / "target1.png", std::ios::binary);
+  char magic[4] = {};
+  png.read(magic, 4);
+  CHECK(std::string(magic + 1, 3) == "PNG");
+}
+
+TEST_CASE("evaluation table: the paper's rows and a Markdown table that says why rows fall short", "[runner]") {
+  const auto rows = gw::paper_table();
+  REQUIRE(rows.size() == 10);
+  CHECK(rows[0].episodes == 100);
+  CHECK(rows[4].paper_success == Approx(0.62));
+  CHECK(rows[1].base_policy);
+  CHECK_FALSE(rows[8].base_policy);
+
+  gw::EvaluationOptions o;
+  o.index_path = std::string(GW_SOURCE_DIR) + "/anatomies/index.json";
+  o.controllers = {"push-only", "policy"};
+  o.extract_centerlines = false;
+  o.episode_scale = 0.02;  // 2 episodes
+  gw::EvaluationRow row = rows[0];
+  row.anatomies = {"t1_straight_y"};
+  gw::EvaluationRow missing = row;
+  missing.name = "missing anatomy";
+  missing.anatomies = {"no_such_anatomy"};
+  const nlohmann::json e = gw::run_evaluation({row, missing}, o);
+  REQUIRE(e["rows"].size() == 2);
+  CHECK(e["rows"][0]["episodes"] == 2);
+  CHECK(e["rows"][0]["results"]["push-only"]["episodes"] == 2);
+  CHECK_FALSE(e["rows"][0]["results"].contains("sac-policy"));  // no policy given: column skipped, with a note
+  CHECK(e["rows"][0]["notes"].size() == 1);
+  CHECK(e["rows"][1]["skipped"].get<std::string>().find("no_such_anatomy") != std::string::npos);
+  const std::string md = gw::evaluation_to_markdown(e);
+  CHECK(md.find("| training anatomies | 2 | — |") != std::string::npos);
+  CHECK(md.find("| 95% |") != std::string::npos);
+  CHECK(md.find("**missing anatomy**: skipped") != std::string::npos);
+}

@@ -1,0 +1,102 @@
+"""CI smoke run of the training script: a few hundred SAC steps against two guidewire-servers, the
+exported actor equal to SB3's deterministic action through the C++ runtime, and navigate driving
+an episode with it (the path from training to the product, end to end)."""
+
+import json
+import os
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from guidewire_nav.env import find_server_binary
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def _app(name: str) -> Path:
+    build = Path(os.environ.get("GW_BUILD_DIR", REPO / "build"))
+    path = build / "apps" / name
+    if not path.is_file():
+        pytest.skip(f"{name} not built ({path}); set GW_BUILD_DIR")
+    return path
+
+
+@pytest.fixture(scope="module")
+def smoke_run(tmp_path_factory):
+    if not find_server_binary().is_file():
+        pytest.skip("guidewire-server not built; set GW_SERVER_BIN or GW_BUILD_DIR")
+    from guidewire_nav import train
+
+    out = tmp_path_factory.mktemp("smoke")
+    argv = ["--out", str(out), "--anatomies", "t1_straight_y", "--total-steps", "200", "--learning-starts", "100",
+            "--envs", "2", "--eval-every", "0", "--eval-episodes", "1", "--checkpoint-every", "100",
+            "--no-progress"]
+    assert train.main(argv) == 0
+    return out
+
+
+def test_run_folder_has_logs_curve_checkpoints_and_summary(smoke_run):
+    summary = json.loads((smoke_run / "summary.json").read_text())
+    assert summary["steps"] >= 200
+    assert summary["settings"]["net_arch"] == "256,256,256"  # the paper's 3x256, not SB3's 2x256 default
+    assert summary["final_eval"]["episodes"] == 1
+    assert (smoke_run / "training_curve.png").stat().st_size > 1000
+    assert (smoke_run / "logs" / "progress.csv").is_file()
+    assert any((smoke_run / "logs").glob("events.out.tfevents.*"))  # TensorBoard
+    assert list((smoke_run / "checkpoints").glob("sac_*_steps.zip"))
+    rows = (smoke_run / "monitor.monitor.csv").read_text().splitlines()
+    assert rows[1].startswith("r,l,t")
+
+
+def test_exported_actor_matches_sb3_through_policy_run(smoke_run):
+    from stable_baselines3 import SAC
+
+    actor = json.loads((smoke_run / "actor.json").read_text())
+    assert actor["obs_layout"] == "guidewire-nav/obs/1"
+    assert actor["training_settings"]["steps"] >= 200
+    model = SAC.load(smoke_run / "best_model.zip", device="cpu")
+    rng = np.random.default_rng(3)
+    low, high = model.observation_space.low, model.observation_space.high
+    obs = rng.uniform(low, high, size=(64, low.size)).astype(np.float32)
+    expected, _ = model.predict(obs, deterministic=True)
+    text = "\n".join(" ".join(f"{v:.9g}" for v in row) for row in obs) + "\n"
+    res = subprocess.run([str(_app("policy-run")), "--policy", str(smoke_run / "actor.json")], input=text,
+                         capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr
+    got = np.array([[float(v) for v in line.split()] for line in res.stdout.splitlines()])
+    np.testing.assert_allclose(got, expected, atol=1e-5)
+
+
+def test_navigate_runs_the_exported_actor(smoke_run):
+    t1 = REPO / "anatomies" / "train" / "t1_straight_y" / "t1_straight_y"
+    res = subprocess.run([str(_app("navigate")), "--anatomy", f"{t1}.stl", "--centerline", f"{t1}.truth.json",
+                          "--target", "1", "--policy", str(smoke_run / "actor.json"), "--json"],
+                         capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr
+    summary = json.loads(res.stdout)
+    assert summary["controller"] == "sac-policy"
+    assert summary["episodes"] == 1
+    assert summary["results"][0]["outcome"] in ("success", "wrong_branch", "stuck", "timeout")
+
+
+@pytest.mark.parametrize("args,fragment", [
+    (["--target", "7", "--controller", "push-only"], "target 7 does not exist"),
+    (["--target", "x", "--controller", "push-only"], "'x' is not a number"),
+    (["--policy", "/nonexistent/actor.json"], "/nonexistent/actor.json"),
+])
+def test_navigate_errors_are_one_clear_line(args, fragment):
+    t1 = REPO / "anatomies" / "train" / "t1_straight_y" / "t1_straight_y"
+    res = subprocess.run([str(_app("navigate")), "--anatomy", f"{t1}.stl", "--centerline", f"{t1}.truth.json", *args],
+                         capture_output=True, text=True)
+    assert res.returncode == 1
+    assert fragment in res.stderr
+    assert res.stderr.startswith("error: ")
+
+
+def test_navigate_refuses_a_missing_mesh(tmp_path):
+    res = subprocess.run([str(_app("navigate")), "--anatomy", str(tmp_path / "none.stl"), "--target", "1"],
+                         capture_output=True, text=True)
+    assert res.returncode == 1
+    assert "none.stl" in res.stderr

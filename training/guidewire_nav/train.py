@@ -1,0 +1,258 @@
+"""Train the zero-shot navigation policy: SB3 SAC against the C++ simulator over sockets.
+
+Reads top to bottom: settings -> environments (one guidewire-server per worker) -> SAC with the
+paper's hyper-parameters -> learn with progress bar, logs, checkpoints and periodic evaluation ->
+export the deterministic actor to JSON for the C++ runtime -> training-curve PNG.
+
+    python -m guidewire_nav.train --total-steps 150000 --envs 2 --out runs/sac
+    python -m guidewire_nav.train --total-steps 300 --learning-starts 100 --out /tmp/smoke   # CI smoke run
+
+Paper (Scarponi et al., section 3.1): actor and critics 3x256, lr 1e-4, batch 256, buffer 10,000,
+gamma 0.98, entropy coefficient learned, 1,000 warm-up steps, one gradient update per step; the 4
+training anatomies, a random anatomy and target per episode; converged at ~120k steps.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import dataclasses
+import json
+import platform
+import subprocess
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import torch
+
+
+@dataclass
+class Settings:
+    out: str = "runs/sac"                  # run folder: logs, checkpoints, actor.json, curve PNG
+    anatomies: str = "train"               # anatomy set (or comma-separated names) the servers load
+    total_steps: int = 150_000             # environment steps over all workers
+    envs: int = 2                          # parallel servers (SubprocVecEnv); 1 = in-process DummyVecEnv
+    seed: int = 0
+    # SAC, paper defaults
+    learning_rate: float = 1e-4
+    batch_size: int = 256
+    buffer_size: int = 10_000
+    gamma: float = 0.98
+    learning_starts: int = 1_000
+    train_freq: int = 1
+    gradient_steps: int = -1               # -1: one update per environment step over all workers (paper)
+    net_arch: str = "256,256,256"          # actor and critics (SB3's default is only 2x256)
+    ent_coef: str = "auto"
+    device: str = "auto"                   # "cuda" on the GPU machine, "cpu" otherwise
+    # logging, evaluation, checkpoints
+    eval_every: int = 10_000               # steps between evaluations (0 = only at the end)
+    eval_episodes: int = 40                # seeded episodes per evaluation, over the training anatomies
+    stop_at_success: float = 0.0           # stop early once an evaluation reaches this rate (0 = never)
+    checkpoint_every: int = 25_000
+    progress: bool = True
+    servers: str = ""                      # connect to running servers "host:port,host:port" instead of spawning
+
+
+def parse_settings(argv=None) -> Settings:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    for f in dataclasses.fields(Settings):
+        flag = "--" + f.name.replace("_", "-")
+        if f.type in ("bool", bool):
+            parser.add_argument(flag, action=argparse.BooleanOptionalAction, default=f.default)
+        else:
+            kind = {"int": int, "float": float, "str": str}[str(f.type)]
+            parser.add_argument(flag, type=kind, default=f.default)
+    return Settings(**vars(parser.parse_args(argv)))
+
+
+def git_commit() -> str:
+    try:
+        root = Path(__file__).resolve().parents[2]
+        rev = subprocess.run(["git", "-C", str(root), "rev-parse", "HEAD"], capture_output=True, text=True, check=True)
+        dirty = subprocess.run(["git", "-C", str(root), "status", "--porcelain", "--untracked-files=no"],
+                               capture_output=True, text=True, check=True)
+        return rev.stdout.strip() + ("-dirty" if dirty.stdout.strip() else "")
+    except Exception:  # noqa: BLE001 - a tarball checkout has no git; not an error for training
+        return "unknown"
+
+
+def make_env_fn(s: Settings, rank: int, eval_env: bool = False):
+    """A thunk for (Subproc|Dummy)VecEnv: each worker starts (or connects to) its own server."""
+
+    def thunk():
+        from guidewire_nav.env import GuidewireEnv
+
+        if s.servers:  # remote servers, round-robin over the workers; they were started with their own set
+            host, port = s.servers.split(",")[rank % len(s.servers.split(","))].rsplit(":", 1)
+            env = GuidewireEnv(host=host, port=int(port))
+        else:
+            env = GuidewireEnv(anatomies=s.anatomies)
+        env.reset(seed=s.seed + 1000 * rank + (10**6 if eval_env else 0))
+        return env  # episode statistics come from VecMonitor over all workers
+
+    return thunk
+
+
+def evaluate(model, env, episodes: int, seed: int) -> dict:
+    """Deterministic actor on `episodes` seeded episodes; the env draws anatomy and target per seed."""
+    successes, lengths, returns, outcomes = 0, [], [], {}
+    for k in range(episodes):
+        obs, _ = env.reset(seed=seed + k)
+        done, ret, n, info = False, 0.0, 0, {}
+        while not done:
+            action, _ = model.predict(obs, deterministic=True)
+            obs, reward, terminated, truncated, info = env.step(action)
+            ret += float(reward)
+            n += 1
+            done = terminated or truncated
+        successes += bool(info["success"])
+        outcome = next((k for k in ("success", "wrong_branch", "stuck", "step_limit") if info.get(k)), "other")
+        if info.get("problem"):
+            outcome = "diverged"
+        outcomes[outcome] = outcomes.get(outcome, 0) + 1
+        lengths.append(n)
+        returns.append(ret)
+    return {"episodes": episodes, "success_rate": successes / episodes, "mean_length": float(np.mean(lengths)),
+            "mean_return": float(np.mean(returns)), "outcomes": outcomes}
+
+
+def plot_curve(out: Path, monitor_rows: list[dict], evals: list[dict]) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4))
+    if monitor_rows:
+        steps = np.cumsum([r["l"] for r in monitor_rows])
+        rets = np.array([r["r"] for r in monitor_rows])
+        window = max(1, min(50, len(rets) // 10))
+        smooth = np.convolve(rets, np.ones(window) / window, mode="valid")
+        ax1.plot(steps, rets, ".", alpha=0.25, label="episode return")
+        ax1.plot(steps[window - 1:], smooth, label=f"mean of {window}")
+        ax1.set_xlabel("environment steps")
+        ax1.set_ylabel("return")
+        ax1.legend()
+    if evals:
+        ax2.plot([e["step"] for e in evals], [100 * e["success_rate"] for e in evals], "o-")
+    ax2.axhline(95, color="gray", ls="--", label="paper: 95%")
+    ax2.set_ylim(0, 102)
+    ax2.set_xlabel("environment steps")
+    ax2.set_ylabel("success rate on training anatomies [%]")
+    ax2.legend()
+    fig.suptitle("SAC on the 4 training anatomies")
+    fig.tight_layout()
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+
+
+def main(argv=None) -> int:
+    s = parse_settings(argv)
+    out = Path(s.out)
+    out.mkdir(parents=True, exist_ok=True)
+    commit = git_commit()
+    command = "python -m guidewire_nav.train " + " ".join(sys.argv[1:] if argv is None else argv)
+    (out / "settings.json").write_text(json.dumps({**dataclasses.asdict(s), "commit": commit, "command": command},
+                                                  indent=2))
+
+    # --- seeding: same seed, same run (up to nondeterministic GPU kernels)
+    np.random.seed(s.seed)
+    torch.manual_seed(s.seed)
+
+    # --- environments: one server per worker, episodes on a random training anatomy and target
+    from stable_baselines3 import SAC
+    from stable_baselines3.common.callbacks import BaseCallback, CallbackList, CheckpointCallback
+    from stable_baselines3.common.logger import configure
+    from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv, VecMonitor
+
+    fns = [make_env_fn(s, rank) for rank in range(s.envs)]
+    vec_env = SubprocVecEnv(fns) if s.envs > 1 else DummyVecEnv(fns)
+    vec_env = VecMonitor(vec_env, str(out / "monitor"), info_keywords=("success",))
+    eval_env = make_env_fn(s, 0, eval_env=True)()
+
+    # --- SAC with the paper's settings
+    model = SAC(
+        "MlpPolicy", vec_env,
+        learning_rate=s.learning_rate, buffer_size=s.buffer_size, batch_size=s.batch_size, gamma=s.gamma,
+        learning_starts=s.learning_starts, train_freq=s.train_freq, gradient_steps=s.gradient_steps,
+        ent_coef=s.ent_coef, policy_kwargs={"net_arch": [int(n) for n in s.net_arch.split(",")]},
+        seed=s.seed, device=s.device, verbose=0,
+    )
+    model.set_logger(configure(str(out / "logs"), ["csv", "tensorboard"]))
+
+    # --- periodic evaluation: success rate over seeded episodes; keeps the best actor
+    evals: list[dict] = []
+
+    class EvalCallback(BaseCallback):
+        def __init__(self):
+            super().__init__()
+            self.next_eval = s.eval_every if s.eval_every > 0 else None
+            self.best = -1.0
+
+        def run_eval(self) -> bool:
+            t0 = time.time()
+            result = evaluate(self.model, eval_env, s.eval_episodes, seed=10_000)
+            result.update(step=self.num_timesteps, wall_s=time.time() - start, eval_s=time.time() - t0)
+            evals.append(result)
+            self.logger.record("eval/success_rate", result["success_rate"])
+            with open(out / "evaluations.jsonl", "a") as f:
+                f.write(json.dumps(result) + "\n")
+            if result["success_rate"] > self.best:
+                self.best = result["success_rate"]
+                self.model.save(out / "best_model.zip")
+            return not (s.stop_at_success > 0 and result["success_rate"] >= s.stop_at_success)
+
+        def _on_step(self) -> bool:
+            if self.next_eval is not None and self.num_timesteps >= self.next_eval:
+                self.next_eval += s.eval_every
+                return self.run_eval()
+            return True
+
+    eval_cb = EvalCallback()
+    callbacks = CallbackList([eval_cb, CheckpointCallback(max(1, s.checkpoint_every // s.envs),
+                                                          str(out / "checkpoints"), name_prefix="sac")])
+
+    # --- learn
+    start = time.time()
+    (out / "evaluations.jsonl").unlink(missing_ok=True)
+    model.learn(total_timesteps=s.total_steps, callback=callbacks, progress_bar=s.progress)
+    model.save(out / "final_model.zip")
+    if not evals or evals[-1]["step"] != model.num_timesteps:
+        eval_cb.run_eval()
+    wall = time.time() - start
+
+    # --- export the best actor (deterministic tanh(mu)) for the C++ runtime
+    from guidewire_nav.export_actor import export_sac_actor
+
+    best = SAC.load(out / "best_model.zip", device="cpu") if (out / "best_model.zip").exists() else model
+    obs_layout = eval_env.unwrapped.spec_reply["obs_layout"]
+    summary = {
+        "command": command, "commit": commit, "settings": dataclasses.asdict(s),
+        "steps": int(model.num_timesteps), "wall_time_s": round(wall, 1),
+        "device": str(model.device), "machine": platform.processor() or platform.machine(),
+        "torch_threads": torch.get_num_threads(),
+        "best_success_rate": max(e["success_rate"] for e in evals), "final_eval": evals[-1],
+    }
+    export_sac_actor(best, out / "actor.json", obs_layout=obs_layout, training_settings=summary)
+    (out / "summary.json").write_text(json.dumps(summary, indent=2))
+
+    # --- training curve
+    rows = []
+    monitor_csv = out / "monitor.monitor.csv"
+    if monitor_csv.exists():
+        with open(monitor_csv) as f:
+            next(f)  # the JSON header line of SB3's monitor file
+            rows = [{"r": float(r["r"]), "l": int(r["l"])} for r in csv.DictReader(f)]
+    plot_curve(out / "training_curve.png", rows, evals)
+
+    vec_env.close()
+    eval_env.close()
+    print(json.dumps({k: summary[k] for k in ("steps", "wall_time_s", "best_success_rate")}))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

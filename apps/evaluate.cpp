@@ -22,7 +22,9 @@ int main(int argc, char** argv) {
   o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   std::string out_dir = "results", rows_filter, centerlines = "extract";
   app.add_option("--policy", o.policy, "actor JSON trained on the 4 training anatomies");
-  app.add_option("--base-policy", o.base_policy, "actor JSON trained on sensitivity/base only (sensitivity rows)");
+  app.add_option("--base-policy", o.base_policy,
+                 "actor JSON trained on sensitivity/base only (sensitivity rows); give --policy's file to use the "
+                 "shipped policy there (noted in the table)");
   app.add_option("--index", o.index_path, "anatomies/index.json");
   app.add_option("--centerlines", centerlines, "extract (zero-shot pipeline) | truth");
   app.add_option("--episode-scale", o.episode_scale, "multiply every row's episode count");
@@ -30,12 +32,22 @@ int main(int argc, char** argv) {
   app.add_option("--threads", o.threads, "episodes run in parallel");
   app.add_option("--rows", rows_filter, "only rows whose name contains this text");
   app.add_option("--out", out_dir, "folder for results.md and results.json");
+  std::string controllers = "policy,push-only,scripted-omega";
+  app.add_option("--controllers", controllers, "comma-separated columns: policy, push-only, scripted-omega");
   CLI11_PARSE(app, argc, argv);
   try {
     if (centerlines != "extract" && centerlines != "truth")
       throw std::invalid_argument("--centerlines must be 'extract' or 'truth', got '" + centerlines + "'");
     o.extract_centerlines = centerlines == "extract";
     o.progress = true;
+    o.controllers.clear();
+    for (std::size_t a = 0; a <= controllers.size();) {
+      const std::size_t b = std::min(controllers.find(',', a), controllers.size());
+      if (b > a) o.controllers.push_back(controllers.substr(a, b - a));
+      a = b + 1;
+    }
+    for (const std::string& c : o.controllers) gw::make_controller(c == "policy" ? "push-only" : c, "");  // names
+    if (o.controllers.empty()) throw std::invalid_argument("--controllers names no controller");
     if (!std::filesystem::exists(o.base_policy)) o.base_policy.clear();
     std::vector<gw::EvaluationRow> rows;
     for (const gw::EvaluationRow& r : gw::paper_table())

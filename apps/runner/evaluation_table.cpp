@@ -78,6 +78,9 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
           r["notes"].push_back("SAC column skipped: no policy trained on sensitivity/base only was given");
           continue;
         }
+        if (kind == "policy" && row.base_policy && policy == o.policy)
+          r["notes"].push_back("SAC column: the shipped policy (trained on the 4 training anatomies), not one "
+                               "trained on sensitivity/base only as in the paper");
         auto make = [&] { return make_controller(kind, policy); };
         const nlohmann::json summary = summarize_episodes(run_batch(task, requests, make, o.threads, trace));
         const std::string column = kind == "policy" ? "sac-policy" : kind;

@@ -73,8 +73,15 @@ Work build_chains(const RawSkeleton& raw) {
 bool prune_one_spur(Work& w, const std::function<double(const Eigen::Vector3d&)>& radius_at,
                     const std::vector<Eigen::Vector3d>& caps, const SkeletonCleanup& o) {
   const auto deg = w.degree();
-  int best = -1;
-  double best_length = std::numeric_limits<double>::infinity();
+  // Terminal chains: which cap (open end) each one ends at, -1 for none. A capped end is a real
+  // terminal and survives the length rule, but one cap is one outlet: when MCF forks just before a
+  // noisy cap, both prongs end "at the cap" and all but the longest are spurs.
+  struct Terminal {
+    size_t chain;
+    int cap;
+    double length, radius;
+  };
+  std::vector<Terminal> terminals;
   for (size_t i = 0; i < w.chains.size(); ++i) {
     const auto& c = w.chains[i];
     const bool end_a = deg[c.a] == 1, end_b = deg[c.b] == 1;
@@ -82,14 +89,24 @@ bool prune_one_spur(Work& w, const std::function<double(const Eigen::Vector3d&)>
     const int junction = end_a ? c.b : c.a, terminal = end_a ? c.a : c.b;
     if (deg[junction] < 3) continue;
     const double r = radius_at(w.node[junction]);
-    const double length = polyline_length(c.points);
-    if (length >= o.spur_factor * r || length >= best_length) continue;
-    const bool at_cap = std::any_of(caps.begin(), caps.end(), [&](const Eigen::Vector3d& cap) {
-      return (cap - w.node[terminal]).norm() < o.cap_factor * std::max(r, radius_at(w.node[terminal]));
-    });
-    if (at_cap) continue;
-    best = static_cast<int>(i);
-    best_length = length;
+    int cap = -1;
+    for (size_t k = 0; k < caps.size() && cap < 0; ++k)
+      if ((caps[k] - w.node[terminal]).norm() < o.cap_factor * std::max(r, radius_at(w.node[terminal])))
+        cap = static_cast<int>(k);
+    terminals.push_back({i, cap, polyline_length(c.points), r});
+  }
+  int best = -1;
+  double best_length = std::numeric_limits<double>::infinity();
+  for (const Terminal& t : terminals) {
+    if (t.length >= best_length) continue;
+    bool spur = t.cap < 0 && t.length < o.spur_factor * t.radius;
+    if (t.cap >= 0)
+      spur = std::any_of(terminals.begin(), terminals.end(), [&](const Terminal& u) {
+        return u.chain != t.chain && u.cap == t.cap && (u.length > t.length || (u.length == t.length && u.chain < t.chain));
+      });
+    if (!spur) continue;
+    best = static_cast<int>(t.chain);
+    best_length = t.length;
   }
   if (best < 0) return false;
   w.chains.erase(w.chains.begin() + best);

@@ -91,7 +91,7 @@ TEST_CASE("controllers: names and missing policy files", "[runner]") {
                     Catch::Contains("/nonexistent/actor.json"));
 }
 
-TEST_CASE("run_batch: threads give the same episodes as one thread; summary counts them", "[runner]") {
+TEST_CASE("run_batch: threads give the same episodes as one thread, and the summary counts them", "[runner]") {
   const ShortT1 t1;
   const auto requests = gw::plan_episodes(t1.task, 0, "all", 2, 5);
   auto scripted = [] { return gw::make_scripted_omega_controller(); };

@@ -46,7 +46,10 @@ int main(int argc, char** argv) {
       if (b > a) o.controllers.push_back(controllers.substr(a, b - a));
       a = b + 1;
     }
-    for (const std::string& c : o.controllers) gw::make_controller(c == "policy" ? "push-only" : c, "");  // names
+    for (const std::string& c : o.controllers)
+      if (c != "policy" && c != "push-only" && c != "scripted-omega")
+        throw std::invalid_argument("--controllers: unknown controller '" + c +
+                                    "' (expected policy, push-only or scripted-omega)");
     if (o.controllers.empty()) throw std::invalid_argument("--controllers names no controller");
     if (!std::filesystem::exists(o.base_policy)) o.base_policy.clear();
     std::vector<gw::EvaluationRow> rows;

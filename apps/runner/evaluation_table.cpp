@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
+#include <map>
 #include <random>
 #include <sstream>
 
@@ -109,11 +110,42 @@ std::string percent(const nlohmann::json& results, const std::string& column) {
   return s.str();
 }
 
+// Where a failure happened, from its detail: "goal 2/3" for "entered a wrong branch before goal 2 of 3"
+// (the bifurcation on the path), "" when the detail does not say.
+std::string failure_place(const std::string& detail) {
+  const std::string key = "before goal ";
+  const std::size_t at = detail.find(key);
+  if (at == std::string::npos) return "";
+  std::string place = detail.substr(at + key.size());
+  const std::size_t of = place.find(" of ");
+  if (of != std::string::npos) place.replace(of, 4, "/");
+  return "goal " + place;
+}
+
+// "wrong_branch 9 (t3 T1 goal 1/1 x5, t4 T2 goal 1/1 x4), diverged 1 (...)": counts per outcome, and
+// per outcome the anatomy, target and bifurcation where they happened, most frequent first.
 std::string failure_modes(const nlohmann::json& summary) {
   std::string text;
   for (const auto& [outcome, count] : summary["outcomes"].items()) {
     if (outcome == "success" || count.get<int>() == 0) continue;
+    std::map<std::string, int> places;
+    if (summary.contains("results"))
+      for (const nlohmann::json& ep : summary["results"]) {
+        if (ep.value("outcome", "") != outcome) continue;
+        std::string place = ep.value("anatomy", "?") + " T" + std::to_string(ep.value("target", 0));
+        const std::string goal = failure_place(ep.value("detail", ""));
+        if (!goal.empty()) place += " " + goal;
+        ++places[place];
+      }
+    std::vector<std::pair<std::string, int>> sorted(places.begin(), places.end());
+    std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
     text += (text.empty() ? "" : ", ") + outcome + " " + std::to_string(count.get<int>());
+    if (!sorted.empty()) {
+      text += " (";
+      for (std::size_t i = 0; i < sorted.size(); ++i)
+        text += (i ? ", " : "") + sorted[i].first + " x" + std::to_string(sorted[i].second);
+      text += ")";
+    }
   }
   return text.empty() ? "none" : text;
 }
@@ -129,7 +161,8 @@ std::string evaluation_to_markdown(const nlohmann::json& e) {
        << percent(res, "sac-policy") << " | " << percent(res, "push-only") << " | " << percent(res, "scripted-omega")
        << " | " << std::lround(100.0 * r["paper"].get<double>()) << "% |\n";
   }
-  md << "\nFailure modes (episodes that did not reach the target, by outcome):\n\n";
+  md << "\nFailure modes (episodes that did not reach the target, by outcome; in brackets the anatomy, "
+        "target and, for a wrong branch, the goal (bifurcation on the path, k of n) it was lost before):\n\n";
   for (const nlohmann::json& r : e["rows"]) {
     md << "- **" << r["name"].get<std::string>() << "**: ";
     if (r.contains("skipped")) {

@@ -86,6 +86,10 @@ WallDistance cached_wall_distance(const WireModel& model, const VesselScene& sce
   return wd;
 }
 
+bool same_wall_side(const Eigen::Vector3d& start_normal, const Eigen::Vector3d& mid_normal) {
+  return start_normal.dot(mid_normal) >= 0.5;  // cos 60 degrees
+}
+
 void detect_contacts(const WireModel& model, const VesselScene& scene, WireState& state,
                      const std::vector<Eigen::Vector3d>& v_free, std::vector<ContactPoint>& out, double& deepest) {
   out.clear();

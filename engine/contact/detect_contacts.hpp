@@ -38,6 +38,14 @@ bool contact_point_active(const WireModel& model, const WireState& state, int po
 WallDistance cached_wall_distance(const WireModel& model, const VesselScene& scene, WireState& state, int point,
                                   const Eigen::Vector3d& p, double need);
 
+// Whether a wall normal measured at the middle of a contact point's motion may replace the one from the
+// start of the step (re-linearisation): only when both belong to the same side of the wall, i.e. turn by
+// less than 60 degrees. In a vessel not much wider than the wire, the middle of a fast motion can be
+// nearer the OPPOSITE wall; taking that wall's normal drops the constraint that holds the point, which
+// then passes through the wall (seen as "wire point ... outside the vessel wall" divergences in the
+// coronary tree when a folded tip snapped across a 0.8 mm branch).
+bool same_wall_side(const Eigen::Vector3d& start_normal, const Eigen::Vector3d& mid_normal);
+
 // Contacts of the wire at the start of the step (state.x), linearised there (SOFA-style): every active
 // point whose wall clearance is below the margin plus its free-motion travel dt |v_free| this step.
 // `v_free`: per node velocity after the free motion. Clears and fills `out`; `deepest` = largest

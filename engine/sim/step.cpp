@@ -116,7 +116,7 @@ StepReport substep(const WireModel& model, const VesselScene* scene, const Contr
         const Eigen::Vector3d mid = contact_point_position(model, state.x, c.point) + 0.5 * dt * v_end;
         const double need = model.radius_mm + model.params.contact_margin_mm + dt * v_end.norm();
         const WallDistance wd = cached_wall_distance(model, *scene, state, c.point, mid, need);
-        if (wd.triangle < 0) continue;
+        if (wd.triangle < 0 || !same_wall_side(c.n, wd.inward)) continue;
         turned = std::max(turned, 1.0 - wd.inward.dot(c.n));
         c.n = wd.inward;
         c.t1 = c.n.unitOrthogonal();

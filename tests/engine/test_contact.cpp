@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "anatomy_fixture.hpp"
+#include "engine/contact/detect_contacts.hpp"
 #include "engine/sim/step.hpp"
 #include "engine/wire/wire_queries.hpp"
 
@@ -52,6 +53,24 @@ TEST_CASE("vessel scene: inside is positive, outside negative, inward normal poi
   const WallDistance out = wall_distance(a.scene, Eigen::Vector3d(2.5, 0, 30));
   CHECK(out.signed_distance == Approx(-0.75).margin(0.06));
   CHECK(out.inward.dot(Eigen::Vector3d(-1, 0, 0)) > 0.95);
+}
+
+TEST_CASE("re-linearising a contact keeps the wall it started on, never the opposite one", "[contact]") {
+  // t1's access vessel: radius 1.75 mm around the z axis. A point pressed on the +x wall whose predicted
+  // motion crosses the axis is nearer the -x wall at mid-motion; that wall's normal must not replace
+  // the +x one (it would release the point towards the +x wall).
+  const test::Anatomy a = test::load_anatomy("train/t1_straight_y/t1_straight_y");
+  const WallDistance start = wall_distance(a.scene, Eigen::Vector3d(1.5, 0, 30));
+  const WallDistance across = wall_distance(a.scene, Eigen::Vector3d(-0.3, 0, 30));
+  const WallDistance along = wall_distance(a.scene, Eigen::Vector3d(1.45, 0.4, 30.3));
+  REQUIRE(start.inward.x() < -0.95);
+  REQUIRE(across.inward.x() > 0.95);
+  CHECK_FALSE(same_wall_side(start.inward, across.inward));
+  CHECK(same_wall_side(start.inward, along.inward));
+  // The 60 degree boundary itself.
+  const Eigen::Vector3d n(1, 0, 0);
+  CHECK(same_wall_side(n, Eigen::Vector3d(std::cos(0.9 * M_PI / 3), std::sin(0.9 * M_PI / 3), 0)));
+  CHECK_FALSE(same_wall_side(n, Eigen::Vector3d(std::cos(1.1 * M_PI / 3), std::sin(1.1 * M_PI / 3), 0)));
 }
 
 TEST_CASE("a vessel mesh oriented inwards is refused", "[contact]") {

@@ -176,4 +176,23 @@ TEST_CASE("evaluation table: the paper's rows and a Markdown table that says why
   CHECK(md.find("| training anatomies | 2 | — |") != std::string::npos);
   CHECK(md.find("| 95% |") != std::string::npos);
   CHECK(md.find("**missing anatomy**: skipped") != std::string::npos);
+
+  // Failure modes name the anatomy, target and the bifurcation where episodes were lost, most frequent first.
+  nlohmann::json by_hand = {{"rows", nlohmann::json::array()}};
+  nlohmann::json lost = {{"outcome", "wrong_branch"}, {"anatomy", "coronary"}, {"target", 3},
+                         {"detail", "entered a wrong branch before goal 2 of 3"}};
+  nlohmann::json other = {{"outcome", "wrong_branch"}, {"anatomy", "coronary"}, {"target", 1},
+                          {"detail", "entered a wrong branch before goal 1 of 2"}};
+  nlohmann::json broke = {{"outcome", "diverged"}, {"anatomy", "coronary"}, {"target", 6},
+                          {"detail", "physics diverged: NaN"}};
+  nlohmann::json summary = {{"episodes", 4},
+                            {"successes", 0},
+                            {"success_rate", 0.0},
+                            {"outcomes", {{"success", 0}, {"wrong_branch", 3}, {"diverged", 1}}},
+                            {"results", {other, lost, lost, broke}}};
+  by_hand["rows"].push_back({{"name", "coronary-like"}, {"episodes", 4}, {"paper", 0.94},
+                             {"notes", nlohmann::json::array()}, {"results", {{"scripted-omega", summary}}}});
+  const std::string why = gw::evaluation_to_markdown(by_hand);
+  CHECK(why.find("wrong_branch 3 (coronary T3 goal 2/3 x2, coronary T1 goal 1/2 x1)") != std::string::npos);
+  CHECK(why.find("diverged 1 (coronary T6 x1)") != std::string::npos);
 }

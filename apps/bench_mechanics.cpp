@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
           {"max_contacts", b.max_contacts},
           {"mean_max_pgs_sweeps", b.mean_pgs_sweeps},
           {"max_penetration_mm", b.max_penetration_mm},
+          {"split_substeps", b.split_substeps},
           {"us_per_substep_by_stage", stages},
           {"tip", {b.tip.x(), b.tip.y(), b.tip.z()}}}},
         {"scaling_free_space", scaling}};

@@ -91,12 +91,13 @@ bool same_wall_side(const Eigen::Vector3d& start_normal, const Eigen::Vector3d& 
 }
 
 void detect_contacts(const WireModel& model, const VesselScene& scene, WireState& state,
-                     const std::vector<Eigen::Vector3d>& v_free, std::vector<ContactPoint>& out, double& deepest) {
+                     const std::vector<Eigen::Vector3d>& v_free, double h, std::vector<ContactPoint>& out,
+                     double& deepest) {
   out.clear();
   deepest = 0;
   const double r = model.radius_mm;
   const double margin = model.params.contact_margin_mm;
-  const double dt = model.h;
+  const double dt = h;
   const int first_free = first_free_node(model, state);
   // Active points are a suffix of the nodes and a suffix of the midpoints (arc decreases distally).
   int first_node = model.nodes, first_mid = model.nodes - 1;

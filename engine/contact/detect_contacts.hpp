@@ -47,10 +47,11 @@ WallDistance cached_wall_distance(const WireModel& model, const VesselScene& sce
 bool same_wall_side(const Eigen::Vector3d& start_normal, const Eigen::Vector3d& mid_normal);
 
 // Contacts of the wire at the start of the step (state.x), linearised there (SOFA-style): every active
-// point whose wall clearance is below the margin plus its free-motion travel dt |v_free| this step.
-// `v_free`: per node velocity after the free motion. Clears and fills `out`; `deepest` = largest
-// distance of an active point outside the wall (0 if none).
+// point whose wall clearance is below the margin plus its free-motion travel h |v_free| this sub-step
+// (length h [s]). `v_free`: per node velocity after the free motion. Clears and fills `out`; `deepest` =
+// largest distance of an active point outside the wall (0 if none).
 void detect_contacts(const WireModel& model, const VesselScene& scene, WireState& state,
-                     const std::vector<Eigen::Vector3d>& v_free, std::vector<ContactPoint>& out, double& deepest);
+                     const std::vector<Eigen::Vector3d>& v_free, double h, std::vector<ContactPoint>& out,
+                     double& deepest);
 
 }  // namespace gw

@@ -14,8 +14,7 @@ struct ElementLinearisation {
 };
 
 void linearise_element(const WireModel& model, const WireState& st, int e, const BeamElementEval& ev,
-                       const Vec6& held_dv, bool held_a, ElementLinearisation& out) {
-  const double dt = model.h;
+                       const Vec6& held_dv, bool held_a, double dt, ElementLinearisation& out) {
   const double s = dt * model.params.damping_stiffness + dt * dt;
   const double l = model.length[e];
   const Vec6& c = model.stiffness[e];
@@ -35,8 +34,7 @@ Vec6 held_velocity_change(const WireState& st, int h, double push, double rotate
   return dv;
 }
 
-Vec6 node_rhs(const WireModel& model, const WireState& st, int i) {
-  const double dt = model.h;
+Vec6 node_rhs(const WireModel& model, const WireState& st, int i, double dt) {
   const double alpha = model.params.damping_mass;
   Vec6 r;
   r << dt * st.external_force[i] - dt * alpha * model.mass[i] * st.v[i],
@@ -46,7 +44,8 @@ Vec6 node_rhs(const WireModel& model, const WireState& st, int i) {
 
 }  // namespace
 
-void assemble_system(const WireModel& model, const WireState& st, double push, double rotate, DynamicsSystem& sys) {
+void assemble_system(const WireModel& model, const WireState& st, double push, double rotate, double h,
+                     DynamicsSystem& sys) {
   const int n = model.nodes;
   const int k = first_free_node(model, st);
   const int nf = n - k;
@@ -60,13 +59,13 @@ void assemble_system(const WireModel& model, const WireState& st, double push, d
   if (nf == 0) return;
 
   for (int i = k - 1; i < n; ++i) sys.rot[i] = st.q[i].toRotationMatrix();
-  const double dt = model.h;
+  const double dt = h;
   const double mscale = 1.0 + dt * model.params.damping_mass;
   for (int i = k; i < n; ++i) {
     Mat6& d = sys.a.diag[i - k];
     d.diagonal().head<3>().setConstant(mscale * model.mass[i]);
     d.diagonal().tail<3>().setConstant(mscale * model.rot_inertia[i]);
-    sys.rhs.segment<6>(6 * (i - k)) = node_rhs(model, st, i);
+    sys.rhs.segment<6>(6 * (i - k)) = node_rhs(model, st, i, dt);
   }
   const Vec6 held_dv = held_velocity_change(st, k - 1, push, rotate);
   ElementLinearisation lin;
@@ -75,7 +74,7 @@ void assemble_system(const WireModel& model, const WireState& st, double push, d
     eval_beam_element(model, e, st.x[e], sys.rot[e], st.x[e + 1], sys.rot[e + 1], ev);
     sys.elastic_energy += ev.energy;
     const bool held_a = e == k - 1;
-    linearise_element(model, st, e, ev, held_dv, held_a, lin);
+    linearise_element(model, st, e, ev, held_dv, held_a, dt, lin);
     const int lb = e + 1 - k;
     sys.a.diag[lb] += lin.k.block<6, 6>(6, 6);
     sys.rhs.segment<6>(6 * lb) += lin.rhs.tail<6>();
@@ -104,14 +103,14 @@ void assemble_system_sparse(const WireModel& model, const WireState& st, double 
       trip.emplace_back(r + j, r + j, mscale * model.mass[i]);
       trip.emplace_back(r + 3 + j, r + 3 + j, mscale * model.rot_inertia[i]);
     }
-    rhs.segment<6>(r) += node_rhs(model, st, i);
+    rhs.segment<6>(r) += node_rhs(model, st, i, dt);
   }
   const Vec6 held_dv = held_velocity_change(st, k - 1, push, rotate);
   BeamElementEval ev;
   ElementLinearisation lin;
   for (int e = k - 1; e + 1 < n; ++e) {
     eval_beam_element(model, e, st.x[e], st.q[e].toRotationMatrix(), st.x[e + 1], st.q[e + 1].toRotationMatrix(), ev);
-    linearise_element(model, st, e, ev, held_dv, e == k - 1, lin);
+    linearise_element(model, st, e, ev, held_dv, e == k - 1, dt, lin);
     // Scatter every (node, node) block whose both nodes are unknowns.
     const int nodes_of[2] = {e, e + 1};
     for (int p = 0; p < 2; ++p) {

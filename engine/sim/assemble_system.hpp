@@ -23,13 +23,14 @@ struct DynamicsSystem {
   double elastic_energy = 0;          // of the free elements [mN mm]
 };
 
-// Builds the system for `state` with the introducer moving at (push, rotate) from now on.
+// Builds the system for a sub-step of length `h` [s] (model.h, or a fraction of it when step() splits
+// a violent sub-step) with the introducer moving at (push, rotate) from now on.
 // Reuses `sys` storage: no allocation once sized for the model.
 void assemble_system(const WireModel& model, const WireState& state, double push_mm_per_s, double rotate_rad_per_s,
-                     DynamicsSystem& sys);
+                     double h, DynamicsSystem& sys);
 
 // The same system as a general sparse matrix, assembled element by element from triplets (the
-// cross-check path for SuiteSparse, and the route for structures that are not a chain).
+// cross-check path for SuiteSparse, and the route for structures that are not a chain); sub-step model.h.
 void assemble_system_sparse(const WireModel& model, const WireState& state, double push_mm_per_s,
                             double rotate_rad_per_s, Eigen::SparseMatrix<double>& a, Eigen::VectorXd& rhs);
 

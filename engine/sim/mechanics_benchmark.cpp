@@ -25,6 +25,7 @@ InsertionBenchmark run_insertion_benchmark(const WireModel& model, const VesselS
     sweep_sum += rep.contact_iterations;
     b.max_contacts = std::max(b.max_contacts, rep.contacts);
     b.max_penetration_mm = std::max(b.max_penetration_mm, rep.max_penetration_mm);
+    b.split_substeps += rep.split_substeps;
     b.free_nodes_end = rep.free_nodes;
     if (!rep.ok) {
       b.ok = false;

@@ -18,6 +18,7 @@ struct InsertionBenchmark {
   int max_contacts = 0;
   double mean_pgs_sweeps = 0;         // per control step: the most sweeps any of its sub-steps used
   double max_penetration_mm = 0;
+  int split_substeps = 0;  // sub-steps halved because the wire moved too fast (adaptive step)
   double inserted_mm = 0;
   int free_nodes_end = 0;
   bool ok = true;

@@ -42,8 +42,22 @@ StepReport fail(WireState& state, StepReport rep, const std::string& problem) {
 
 namespace {
 
-// One integration sub-step of length model.h.
-StepReport substep(const WireModel& model, const VesselScene* scene, const Control& control, WireState& state) {
+// A sub-step is split in two halves while its motion would carry some node further than this [mm]: the
+// contacts are linearised at the start of the sub-step (tangent planes of the wall), which holds for
+// travel that is small against the vessel's curvature (error ~ travel^2 / 2R: 0.003 mm at R = 1.75 mm).
+// Pushing moves the wire 0.005 mm per 0.5 ms sub-step; a tip that snaps free after the wire has wound
+// up torsion against the wall (a "whip") moved 1-3 mm in one sub-step and left the vessel.
+constexpr double kMaxSubstepTravelMm = 0.05;
+// At most this many halvings (model.h / 64 = 8 us at the default 0.5 ms).
+constexpr int kMaxSubstepHalvings = 6;
+
+// Why substep() stopped before integrating: the motion is too fast for one linearisation of length h.
+constexpr const char* kSplitRequest = "split";
+
+// One integration sub-step of length h. With `may_split`, returns before changing the wire's motion
+// (problem = kSplitRequest, ok = true) when a node would travel more than kMaxSubstepTravelMm.
+StepReport substep(const WireModel& model, const VesselScene* scene, const Control& control, WireState& state,
+                   double h, bool may_split) {
   StepReport rep;
   const int n = model.nodes;
   if (static_cast<int>(state.x.size()) != n || static_cast<int>(state.q.size()) != n ||
@@ -57,13 +71,13 @@ StepReport substep(const WireModel& model, const VesselScene* scene, const Contr
     return fail(state, rep, "the state diverged earlier (" + state.diverged + "); reset it");
 
   thread_local StepWorkspace ws;
-  const double dt = model.h;
+  const double dt = h;
   const double push = control.push_mm_per_s;
   const double rotate = control.rotate_rad_per_s;
   auto clock = std::chrono::steady_clock::now();
 
   // Assemble the linearised implicit Euler system of the free nodes (Eq. 1).
-  assemble_system(model, state, push, rotate, ws.sys);
+  assemble_system(model, state, push, rotate, dt, ws.sys);
   const int k = ws.sys.first_free;
   const int nf = n - k;
   rep.free_nodes = nf;
@@ -88,7 +102,7 @@ StepReport substep(const WireModel& model, const VesselScene* scene, const Contr
       ws.v_contact[i] = i < k ? Eigen::Vector3d(push * state.direction)
                               : Eigen::Vector3d(state.v[i] + dv.segment<3>(6 * (i - k)));
     double outside = 0;
-    detect_contacts(model, *scene, state, ws.v_contact, ws.contacts, outside);
+    detect_contacts(model, *scene, state, ws.v_contact, dt, ws.contacts, outside);
     rep.contacts = static_cast<int>(ws.contacts.size());
     rep.timings.detect_s = seconds_since(clock);
     if (outside > model.params.divergence_margin_mm)
@@ -140,6 +154,15 @@ StepReport substep(const WireModel& model, const VesselScene* scene, const Contr
       }
     }
     rep.timings.constraints_s = seconds_since(clock);
+  }
+
+  if (may_split && scene) {  // free space has no contacts to linearise
+    double travel = 0;
+    for (int i = k; i < n; ++i) travel = std::max(travel, (state.v[i] + dv.segment<3>(6 * (i - k))).norm());
+    if (dt * travel > kMaxSubstepTravelMm) {
+      rep.problem = kSplitRequest;
+      return rep;
+    }
   }
 
   // Integrate the free nodes (semi-implicit: positions with the new velocities).
@@ -196,22 +219,45 @@ StepReport substep(const WireModel& model, const VesselScene* scene, const Contr
 
 }  // namespace
 
+namespace {
+
+void accumulate(StepReport& total, const StepReport& rep) {
+  total.ok = rep.ok;
+  total.problem = rep.problem;
+  total.contacts = rep.contacts;
+  total.max_penetration_mm = std::max(total.max_penetration_mm, rep.max_penetration_mm);
+  total.free_nodes = rep.free_nodes;
+  total.contact_iterations = std::max(total.contact_iterations, rep.contact_iterations);
+  total.energy = rep.energy;
+  total.split_substeps += rep.split_substeps;
+  total.timings.detect_s += rep.timings.detect_s;
+  total.timings.assemble_s += rep.timings.assemble_s;
+  total.timings.solve_s += rep.timings.solve_s;
+  total.timings.constraints_s += rep.timings.constraints_s;
+}
+
+// A sub-step of length h, done as two of h/2 (recursively) while its motion is too fast for one.
+StepReport adaptive_substep(const WireModel& model, const VesselScene* scene, const Control& control,
+                            WireState& state, double h, int halvings_left) {
+  StepReport rep = substep(model, scene, control, state, h, halvings_left > 0);
+  if (rep.problem != kSplitRequest) return rep;
+  StepReport total;
+  total.split_substeps = 1;
+  accumulate(total, rep);  // the timings of the attempt
+  for (int half = 0; half < 2; ++half) {
+    accumulate(total, adaptive_substep(model, scene, control, state, 0.5 * h, halvings_left - 1));
+    if (!total.ok) break;
+  }
+  return total;
+}
+
+}  // namespace
+
 StepReport step(const WireModel& model, const VesselScene* scene, const Control& control, WireState& state) {
   StepReport total;
   for (int i = 0; i < model.substeps; ++i) {
-    const StepReport rep = substep(model, scene, control, state);
-    total.ok = rep.ok;
-    total.problem = rep.problem;
-    total.contacts = rep.contacts;
-    total.max_penetration_mm = std::max(total.max_penetration_mm, rep.max_penetration_mm);
-    total.free_nodes = rep.free_nodes;
-    total.contact_iterations = std::max(total.contact_iterations, rep.contact_iterations);
-    total.energy = rep.energy;
-    total.timings.detect_s += rep.timings.detect_s;
-    total.timings.assemble_s += rep.timings.assemble_s;
-    total.timings.solve_s += rep.timings.solve_s;
-    total.timings.constraints_s += rep.timings.constraints_s;
-    if (!rep.ok) break;
+    accumulate(total, adaptive_substep(model, scene, control, state, model.h, kMaxSubstepHalvings));
+    if (!total.ok) break;
   }
   return total;
 }

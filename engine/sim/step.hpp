@@ -1,6 +1,7 @@
 #pragma once
 // The pure step function (like mj_step): advances `state` by model.dt under `control`, in
-// model.substeps integration sub-steps of model.h (one linearisation each).
+// model.substeps integration sub-steps of model.h (one linearisation each); a sub-step in which the
+// wire would move too far for its linearised contacts (a whipping tip) is halved, recursively.
 // Stages, each timed: assemble (beam forces and tangent stiffness, Eq. 1), solve (block-tridiagonal
 // free motion), detect (wall proximity at the predicted positions), constraints (contact impulses by
 // projected Gauss-Seidel on W = H A^-1 H^T, Eq. 2), then integrate and check for divergence.
@@ -28,6 +29,7 @@ struct StepReport {
   int free_nodes = 0;             // nodes out of the introducer (unknowns of the solve)
   int contact_iterations = 0;     // projected Gauss-Seidel sweeps used (most in a sub-step)
   double energy = 0;              // elastic + kinetic energy [mN mm = uJ]
+  int split_substeps = 0;         // sub-steps halved because the wire moved too fast for one (see step.cpp)
   StepTimings timings;            // summed over the sub-steps
 };
 

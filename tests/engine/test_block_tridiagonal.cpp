@@ -97,7 +97,7 @@ TEST_CASE("BTD and CHOLMOD give the same dv for the wire's implicit Euler system
   const WireModel model = make_wire_model(default_wire_params(), 0.01);
   const WireState s = disturbed_state(model);
   DynamicsSystem sys;
-  assemble_system(model, s, 12.0, 0.8, sys);
+  assemble_system(model, s, 12.0, 0.8, model.h, sys);
   const int nf = sys.a.size();
   REQUIRE(nf > 30);
 

@@ -196,3 +196,22 @@ TEST_CASE("evaluation table: the paper's rows and a Markdown table that says why
   CHECK(why.find("wrong_branch 3 (coronary T3 goal 2/3 x2, coronary T1 goal 1/2 x1)") != std::string::npos);
   CHECK(why.find("diverged 1 (coronary T6 x1)") != std::string::npos);
 }
+
+TEST_CASE("a tip that whips free after winding up against the wall stays in the vessel", "[runner][whip]") {
+  // t4's back-curving exit, target 1, the scripted omega controller spinning the wire while the tip is
+  // held by the wall: torsion builds up and the tip snaps round at metres per second. With one 0.5 ms
+  // linearisation per sub-step the tip left the vessel in 3 of these 4 episodes ("wire point ... outside
+  // the vessel wall", t ~ 7.45 s); step() now halves sub-steps while the wire moves that fast.
+  const std::string t4 = std::string(GW_SOURCE_DIR) + "/anatomies/train/t4_s_curving_back/t4_s_curving_back";
+  const gw::NavigationAnatomy nav =
+      gw::load_navigation_anatomy(t4 + ".stl", {1.0, std::nullopt, t4 + ".truth.json", false});
+  const gw::NavigationTask task = gw::make_navigation_task(gw::TaskConfig{}, gw::default_wire_params(), {nav.anatomy});
+  const auto requests = gw::plan_episodes(task, 0, "1", 4, 3);
+  const auto traces = gw::run_batch(task, requests, [] { return gw::make_scripted_omega_controller(); }, 2, {});
+  REQUIRE(traces.size() == 4);
+  for (const auto& t : traces) {
+    INFO("seed " << t.seed << ": " << t.outcome << " " << t.detail);
+    CHECK(t.outcome != "diverged");
+    CHECK(t.detail.find("outside the vessel wall") == std::string::npos);
+  }
+}

@@ -51,13 +51,11 @@ constexpr double kMaxSubstepTravelMm = 0.05;
 // At most this many halvings (model.h / 64 = 8 us at the default 0.5 ms).
 constexpr int kMaxSubstepHalvings = 6;
 
-// Why substep() stopped before integrating: the motion is too fast for one linearisation of length h.
-constexpr const char* kSplitRequest = "split";
-
 // One integration sub-step of length h. With `may_split`, returns before changing the wire's motion
-// (problem = kSplitRequest, ok = true) when a node would travel more than kMaxSubstepTravelMm.
+// (with `split` = true) when a node would travel more than kMaxSubstepTravelMm.
 StepReport substep(const WireModel& model, const VesselScene* scene, const Control& control, WireState& state,
-                   double h, bool may_split) {
+                   double h, bool may_split, bool& split) {
+  split = false;
   StepReport rep;
   const int n = model.nodes;
   if (static_cast<int>(state.x.size()) != n || static_cast<int>(state.q.size()) != n ||
@@ -160,7 +158,7 @@ StepReport substep(const WireModel& model, const VesselScene* scene, const Contr
     double travel = 0;
     for (int i = k; i < n; ++i) travel = std::max(travel, (state.v[i] + dv.segment<3>(6 * (i - k))).norm());
     if (dt * travel > kMaxSubstepTravelMm) {
-      rep.problem = kSplitRequest;
+      split = true;
       return rep;
     }
   }
@@ -217,10 +215,6 @@ StepReport substep(const WireModel& model, const VesselScene* scene, const Contr
   return rep;
 }
 
-}  // namespace
-
-namespace {
-
 void accumulate(StepReport& total, const StepReport& rep) {
   total.ok = rep.ok;
   total.problem = rep.problem;
@@ -239,8 +233,9 @@ void accumulate(StepReport& total, const StepReport& rep) {
 // A sub-step of length h, done as two of h/2 (recursively) while its motion is too fast for one.
 StepReport adaptive_substep(const WireModel& model, const VesselScene* scene, const Control& control,
                             WireState& state, double h, int halvings_left) {
-  StepReport rep = substep(model, scene, control, state, h, halvings_left > 0);
-  if (rep.problem != kSplitRequest) return rep;
+  bool split = false;
+  StepReport rep = substep(model, scene, control, state, h, halvings_left > 0, split);
+  if (!split) return rep;
   StepReport total;
   total.split_substeps = 1;
   accumulate(total, rep);  // the timings of the attempt

@@ -28,9 +28,10 @@ const double kMidpointMinLength = 1.0;  // mm
 
 // Re-gathers the candidates of one point around `p` within `radius`, sorted by distance lower bound.
 void refresh(const VesselScene& scene, const Eigen::Vector3d& p, double radius, WallCandidates& c) {
-  triangles_within(scene, p, radius, c.triangles);
+  triangles_near(scene, p, radius, c.triangles);
   c.centre = p;
   c.gathered = radius;
+  c.closest = -1;
   const std::size_t n = c.triangles.size();
   c.lower_bounds.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -60,13 +61,23 @@ void refresh(const VesselScene& scene, const Eigen::Vector3d& p, double radius, 
 }  // namespace
 
 WallDistance cached_wall_distance(const WireModel& model, const VesselScene& scene, WireState& state, int point,
-                                  const Eigen::Vector3d& p, double need) {
+                                  const Eigen::Vector3d& p, double need, bool exact_to_cutoff) {
   const int count = contact_point_count(model);
   if (state.wall_cache_scene != &scene || static_cast<int>(state.wall_cache.size()) != count) {
     state.wall_cache.assign(count, WallCandidates{});
     state.wall_cache_scene = &scene;
   }
   WallCandidates& c = state.wall_cache[point];
+  // Only distances below `cutoff` matter: contacts need `need`, the divergence check needs to see a
+  // point that is more than the divergence margin outside. Farther triangles are not scanned.
+  const double cutoff = std::max(need, model.params.divergence_margin_mm + model.radius_mm);
+  // Deeper inside than needed by the Lipschitz bound: no scan (most points of a wire in a wide lumen).
+  const double deep = c.bound - (p - c.bound_point).norm();
+  if (deep > (exact_to_cutoff ? cutoff : need)) {
+    WallDistance far;
+    far.signed_distance = deep;  // lower bound, > need
+    return far;
+  }
   double moved = c.gathered >= 0 ? (p - c.centre).norm() : 0;
   if (c.gathered < 0 || c.gathered - moved < need) {
     refresh(scene, p, need + model.params.contact_slack_mm, c);
@@ -76,13 +87,17 @@ WallDistance cached_wall_distance(const WireModel& model, const VesselScene& sce
     if (c.clearance < 0) return wall_distance(scene, p);  // outside the vessel: always exact
     WallDistance far;
     far.signed_distance = c.clearance - moved;  // lower bound, >= need
+    c.bound_point = p;
+    c.bound = far.signed_distance;
     return far;
   }
-  // Only distances below `cutoff` matter: contacts need `need`, the divergence check needs to see a
-  // point that is more than the divergence margin outside. Farther triangles are not scanned.
-  const double cutoff = std::max(need, model.params.divergence_margin_mm + model.radius_mm);
-  WallDistance wd = wall_distance_among(scene, p, c.triangles, cutoff, &c.lower_bounds, moved);
+  WallDistance wd = wall_distance_among(scene, p, c.triangles, cutoff, &c.lower_bounds, moved, c.closest);
   if (wd.triangle < 0) wd.signed_distance = cutoff;  // nothing within the cutoff: well inside
+  c.closest = wd.triangle < 0 ? -1
+                              : static_cast<int>(std::find(c.triangles.begin(), c.triangles.end(), wd.triangle) -
+                                                 c.triangles.begin());
+  c.bound_point = p;
+  c.bound = wd.signed_distance;  // exact, or (triangle < 0) a lower bound
   return wd;
 }
 

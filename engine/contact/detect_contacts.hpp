@@ -32,11 +32,13 @@ Eigen::Vector3d contact_point_position(const WireModel& model, const std::vector
 bool contact_point_active(const WireModel& model, const WireState& state, int point);
 
 // Signed distance (> 0 inside) from `p` (contact point `point`) to the wall, using and refreshing the
-// state's cache. Exact whenever the distance is below max(need, divergence margin + radius); otherwise
-// a lower bound >= need, reported as inside (triangle = -1): a point cannot get farther outside than
-// that without first being seen within it.
+// state's cache. Exact whenever the distance is below `need` (with `exact_to_cutoff`: below
+// max(need, divergence margin + radius)); otherwise a lower bound >= need, reported as inside
+// (triangle = -1): a point cannot get farther outside than that without first being seen within it.
+// Points known (by the last query's distance and how far they moved since) to be deeper than that are
+// answered without a scan.
 WallDistance cached_wall_distance(const WireModel& model, const VesselScene& scene, WireState& state, int point,
-                                  const Eigen::Vector3d& p, double need);
+                                  const Eigen::Vector3d& p, double need, bool exact_to_cutoff = false);
 
 // Whether a wall normal measured at the middle of a contact point's motion may replace the one from the
 // start of the step (re-linearisation): only when both belong to the same side of the wall, i.e. turn by

@@ -20,8 +20,11 @@ struct ContactWorkspace {
   std::vector<int> slot;             // local node -> index in `nodes` (-1 if none)
   std::vector<Mat6> chain;           // products of -G between consecutive contact nodes
   std::vector<Eigen::Matrix3d> xtt;  // translational blocks of A^-1 between contact nodes (dense)
-  Eigen::MatrixXd w;                 // compliance, 3 rows per contact
+  Eigen::MatrixXd w;                 // compliance, 3 rows per contact; only the built columns are valid
+  std::vector<Eigen::Matrix3d> w_diag;  // diagonal blocks of W, one per contact
+  std::vector<char> column_built;    // per contact: its column block of W is in `w`
   Eigen::VectorXd bias, impulse, h_t_p;  // h_t_p: after contact_velocity_change, A^-1 H^T p
+  Eigen::VectorXd u;                 // contact velocities W p + bias during the solve
   int first_free = 0;
   std::vector<Eigen::Matrix3d> basis;  // per contact rows (n, t1, t2)
 };

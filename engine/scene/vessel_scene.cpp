@@ -77,7 +77,19 @@ VesselScene make_vessel_scene(const TriangleMesh& mesh) {
   bvh->model->endModel();
   bvh->object = std::make_unique<fcl::CollisionObjectd>(bvh->model, fcl::Transform3d::Identity());
   s.bvh = bvh;
+  s.grid = std::make_shared<const TriangleGrid>(make_triangle_grid(mesh));
   return s;
+}
+
+void triangles_near(const VesselScene& scene, const Eigen::Vector3d& p, double radius, std::vector<int>& out) {
+  grid_candidates(*scene.grid, p, radius, out);
+  // Keep the triangles whose bounding sphere reaches the query sphere.
+  std::size_t kept = 0;
+  for (const int f : out) {
+    const Eigen::Vector4d& sphere = scene.face_spheres[f];
+    if ((p - sphere.head<3>()).norm() - sphere[3] <= radius) out[kept++] = f;
+  }
+  out.resize(kept);
 }
 
 void triangles_within(const VesselScene& scene, const Eigen::Vector3d& p, double radius, std::vector<int>& out) {
@@ -106,7 +118,7 @@ double nearest_triangle(const VesselScene& scene, const Eigen::Vector3d& p, int&
 }
 
 WallDistance wall_distance_among(const VesselScene& scene, const Eigen::Vector3d& p, const std::vector<int>& triangles,
-                                 double cutoff, const std::vector<double>* lower_bounds, double moved) {
+                                 double cutoff, const std::vector<double>* lower_bounds, double moved, int first) {
   WallDistance best;
   best.signed_distance = std::numeric_limits<double>::infinity();
   double best_d2 = cutoff * cutoff;
@@ -114,16 +126,11 @@ WallDistance wall_distance_among(const VesselScene& scene, const Eigen::Vector3d
   Eigen::Vector3d best_diff = Eigen::Vector3d::Zero();
   const auto& V = scene.mesh.V;
   const auto& F = scene.mesh.F;
-  for (std::size_t i = 0; i < triangles.size(); ++i) {
-    const int f = triangles[i];
-    if (lower_bounds) {
-      const double lb = (*lower_bounds)[i] - moved;
-      if (lb > 0 && lb * lb > best_d2 * (1 + 1e-9) + 1e-18) break;  // sorted: nothing later is closer
-    }
+  auto consider = [&](int f) {
     // Early out: the triangle lies inside its bounding sphere.
     const Eigen::Vector4d& sphere = scene.face_spheres[f];
     const double dc = (p - sphere.head<3>()).norm() - sphere[3];
-    if (dc > 0 && dc * dc > best_d2 * (1 + 1e-12)) continue;
+    if (dc > 0 && dc * dc > best_d2 * (1 + 1e-12)) return;
     int region = 0;
     const Eigen::Matrix3d& tri = scene.face_corners[f];
     const Eigen::Vector3d c = closest_point_on_triangle(p, tri.col(0), tri.col(1), tri.col(2), region);
@@ -146,6 +153,16 @@ WallDistance wall_distance_among(const VesselScene& scene, const Eigen::Vector3d
       best.closest = c;
       best_diff = diff;
     }
+  };
+  // The hinted triangle first (usually the last query's closest): a tight best distance from the start
+  // lets the bounding-sphere test reject nearly every other triangle.
+  if (first >= 0 && first < static_cast<int>(triangles.size())) consider(triangles[first]);
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    if (lower_bounds) {
+      const double lb = (*lower_bounds)[i] - moved;
+      if (lb > 0 && lb * lb > best_d2 * (1 + 1e-9) + 1e-18) break;  // sorted: nothing later is closer
+    }
+    if (static_cast<int>(i) != first) consider(triangles[i]);
   }
   if (best.triangle < 0) return best;
   const int f = best.triangle;

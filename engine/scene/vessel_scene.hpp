@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/mesh/triangle_mesh.hpp"
+#include "engine/scene/triangle_grid.hpp"
 
 namespace gw {
 
@@ -21,6 +22,7 @@ struct VesselScene {
   std::vector<Eigen::Vector4d> face_spheres;  // (centre, radius) packed per face for the hot loop
   std::vector<Eigen::Matrix3d> face_corners;  // columns a, b, c per face (contiguous)
   std::shared_ptr<const VesselSceneBvh> bvh;
+  std::shared_ptr<const TriangleGrid> grid;   // range queries of the per-point candidate lists
 };
 
 // Builds the BVH. Throws std::runtime_error for an empty mesh, non-finite vertices, bad indices or a
@@ -45,13 +47,19 @@ WallDistance wall_distance(const VesselScene& scene, const Eigen::Vector3d& p);
 // Closest point among `triangles` only; signed_distance = +inf and triangle = -1 if none is within
 // `cutoff`. Triangles whose bounding sphere is farther than the best so far are skipped. With
 // `lower_bounds` (ascending, one per triangle, lower bounds of the distance to a point `moved` away
-// from p), the scan stops at the first triangle that cannot be closer than the best.
+// from p), the scan stops at the first triangle that cannot be closer than the best. `first`: a position
+// in `triangles` to try before the others (e.g. the previous closest); the result does not depend on it.
 WallDistance wall_distance_among(const VesselScene& scene, const Eigen::Vector3d& p, const std::vector<int>& triangles,
-                                 double cutoff, const std::vector<double>* lower_bounds = nullptr, double moved = 0);
+                                 double cutoff, const std::vector<double>* lower_bounds = nullptr, double moved = 0,
+                                 int first = -1);
 
 // Every triangle within `radius` of `p` (FCL sphere-vs-BVH collision query), appended to `out` after
 // clearing it.
 void triangles_within(const VesselScene& scene, const Eigen::Vector3d& p, double radius, std::vector<int>& out);
+
+// Every triangle whose bounding sphere is within `radius` of `p` (grid range query): a superset of
+// triangles_within's answer, found ~100x faster; appended to `out` after clearing it.
+void triangles_near(const VesselScene& scene, const Eigen::Vector3d& p, double radius, std::vector<int>& out);
 
 // Unsigned distance from `p` to the nearest triangle and that triangle (FCL distance query).
 double nearest_triangle(const VesselScene& scene, const Eigen::Vector3d& p, int& triangle);

@@ -127,7 +127,8 @@ StepReport substep(const WireModel& model, const VesselScene* scene, const Contr
         if (c.node_b >= 0) v_end += c.wb * ws.cws.h_t_p.segment<3>(6 * (c.node_b - k));
         const Eigen::Vector3d mid = contact_point_position(model, state.x, c.point) + 0.5 * dt * v_end;
         const double need = model.radius_mm + model.params.contact_margin_mm + dt * v_end.norm();
-        const WallDistance wd = cached_wall_distance(model, *scene, state, c.point, mid, need);
+        // Exact to the cutoff: a wall a little beyond `need` at mid-motion still gives this contact its normal.
+        const WallDistance wd = cached_wall_distance(model, *scene, state, c.point, mid, need, true);
         if (wd.triangle < 0 || !same_wall_side(c.n, wd.inward)) continue;
         turned = std::max(turned, 1.0 - wd.inward.dot(c.n));
         c.n = wd.inward;

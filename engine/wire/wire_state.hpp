@@ -20,6 +20,12 @@ struct WallCandidates {
   std::vector<int> triangles;       // sorted by lower_bounds
   std::vector<double> lower_bounds; // lower bound of each triangle's distance to centre
   double clearance = 0;             // when `triangles` is empty: signed wall distance at centre (> 0 inside)
+  int closest = -1;                 // position in `triangles` of the last query's closest triangle (-1: none)
+  // Lower bound of the signed wall distance at `bound_point`, from the last query of this point. The
+  // signed distance is 1-Lipschitz, so bound - |p - bound_point| bounds it at p: a point that is still
+  // deeper inside than a query's cutoff needs no triangle scan (most of a wire in a wide lumen).
+  Eigen::Vector3d bound_point = Eigen::Vector3d::Zero();
+  double bound = -1e300;
 };
 
 struct WireState {

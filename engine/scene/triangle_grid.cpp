@@ -1,0 +1,88 @@
+#include "engine/scene/triangle_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+namespace gw {
+
+namespace {
+
+std::int64_t cell_key(const TriangleGrid& g, int x, int y, int z) {
+  return (static_cast<std::int64_t>(x) * g.dims.y() + y) * g.dims.z() + z;
+}
+
+// Cell index range [lo, hi] covering [a, b] along one axis, clamped to the grid.
+void cell_range(const TriangleGrid& g, int axis, double a, double b, int& lo, int& hi) {
+  lo = std::max(0, static_cast<int>(std::floor((a - g.origin[axis]) / g.cell)));
+  hi = std::min(g.dims[axis] - 1, static_cast<int>(std::floor((b - g.origin[axis]) / g.cell)));
+}
+
+}  // namespace
+
+TriangleGrid make_triangle_grid(const TriangleMesh& mesh, double cell) {
+  const int nf = static_cast<int>(mesh.F.rows());
+  if (nf == 0 || mesh.V.rows() == 0) throw std::invalid_argument("make_triangle_grid: the mesh is empty");
+  TriangleGrid g;
+  if (!(cell > 0)) {
+    double edges = 0;
+    for (int f = 0; f < nf; ++f)
+      for (int c = 0; c < 3; ++c) edges += (mesh.V.row(mesh.F(f, c)) - mesh.V.row(mesh.F(f, (c + 1) % 3))).norm();
+    cell = std::max(0.25, 2.0 * edges / (3.0 * nf));
+  }
+  g.cell = cell;
+  const Eigen::Vector3d lo = mesh.V.colwise().minCoeff().transpose(), hi = mesh.V.colwise().maxCoeff().transpose();
+  g.origin = lo;
+  for (int a = 0; a < 3; ++a) g.dims[a] = std::max(1, static_cast<int>(std::floor((hi[a] - lo[a]) / cell)) + 1);
+  // (cell key, triangle) pairs, sorted, then compressed into rows.
+  std::vector<std::pair<std::int64_t, int>> pairs;
+  pairs.reserve(static_cast<std::size_t>(nf) * 4);
+  for (int f = 0; f < nf; ++f) {
+    Eigen::Vector3d bmin = mesh.V.row(mesh.F(f, 0)).transpose(), bmax = bmin;
+    for (int c = 1; c < 3; ++c) {
+      bmin = bmin.cwiseMin(mesh.V.row(mesh.F(f, c)).transpose());
+      bmax = bmax.cwiseMax(mesh.V.row(mesh.F(f, c)).transpose());
+    }
+    int r[3][2];
+    for (int a = 0; a < 3; ++a) cell_range(g, a, bmin[a], bmax[a], r[a][0], r[a][1]);
+    for (int x = r[0][0]; x <= r[0][1]; ++x)
+      for (int y = r[1][0]; y <= r[1][1]; ++y)
+        for (int z = r[2][0]; z <= r[2][1]; ++z) pairs.emplace_back(cell_key(g, x, y, z), f);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  g.items.reserve(pairs.size());
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    if (i == 0 || pairs[i].first != pairs[i - 1].first) {
+      g.keys.push_back(pairs[i].first);
+      g.begin.push_back(static_cast<int>(g.items.size()));
+    }
+    g.items.push_back(pairs[i].second);
+  }
+  g.begin.push_back(static_cast<int>(g.items.size()));
+  return g;
+}
+
+void grid_candidates(const TriangleGrid& g, const Eigen::Vector3d& p, double radius, std::vector<int>& out) {
+  out.clear();
+  int r[3][2];
+  for (int a = 0; a < 3; ++a) {
+    cell_range(g, a, p[a] - radius, p[a] + radius, r[a][0], r[a][1]);
+    if (r[a][0] > r[a][1]) return;  // the box misses the grid
+  }
+  for (int x = r[0][0]; x <= r[0][1]; ++x)
+    for (int y = r[1][0]; y <= r[1][1]; ++y) {
+      // Cells along z are consecutive keys: one binary search per (x, y) column.
+      const std::int64_t first = cell_key(g, x, y, r[2][0]), last = cell_key(g, x, y, r[2][1]);
+      auto it = std::lower_bound(g.keys.begin(), g.keys.end(), first);
+      for (; it != g.keys.end() && *it <= last; ++it) {
+        const std::size_t k = static_cast<std::size_t>(it - g.keys.begin());
+        out.insert(out.end(), g.items.begin() + g.begin[k], g.items.begin() + g.begin[k + 1]);
+      }
+    }
+  // A triangle spanning several cells was added once per cell.
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+}  // namespace gw

@@ -100,3 +100,21 @@ def test_navigate_refuses_a_missing_mesh(tmp_path):
                          capture_output=True, text=True)
     assert res.returncode == 1
     assert "none.stl" in res.stderr
+
+
+def test_wall_time_budget_stops_training_and_still_exports(tmp_path):
+    """--max-minutes ends learn() early (a lent GPU machine is held for minutes, not hours); with
+    --eval-episodes 0 nothing is evaluated in Python and the final actor is exported."""
+    if not find_server_binary().is_file():
+        pytest.skip("guidewire-server not built; set GW_SERVER_BIN or GW_BUILD_DIR")
+    from guidewire_nav import train
+
+    argv = ["--out", str(tmp_path), "--anatomies", "t1_straight_y", "--total-steps", "5000",
+            "--learning-starts", "50", "--envs", "1", "--eval-episodes", "0", "--max-minutes", "0.05",
+            "--no-progress"]
+    assert train.main(argv) == 0
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert 0 < summary["steps"] < 5000  # a run without the budget would reach 5000 (minutes)
+    assert summary["final_eval"] is None and summary["best_success_rate"] is None
+    assert not (tmp_path / "evaluations.jsonl").exists()
+    assert json.loads((tmp_path / "actor.json").read_text())["obs_layout"] == "guidewire-nav/obs/1"

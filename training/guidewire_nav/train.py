@@ -50,8 +50,10 @@ class Settings:
     # logging, evaluation, checkpoints
     eval_every: int = 10_000               # steps between evaluations (0 = only at the end)
     eval_episodes: int = 40                # seeded episodes per evaluation, over the training anatomies
+                                           # (0 = none: pick checkpoints later with the C++ `evaluate`)
     stop_at_success: float = 0.0           # stop early once an evaluation reaches this rate (0 = never)
     checkpoint_every: int = 25_000
+    max_minutes: float = 0.0               # stop learning after this wall time (0 = run all total_steps)
     progress: bool = True
     servers: str = ""                      # connect to running servers "host:port,host:port" instead of spawning
 
@@ -206,6 +208,10 @@ def main(argv=None) -> int:
             return not (s.stop_at_success > 0 and result["success_rate"] >= s.stop_at_success)
 
         def _on_step(self) -> bool:
+            if s.max_minutes > 0 and time.time() - start > 60 * s.max_minutes:
+                return False  # wall-time budget spent: learn() returns, the rest of the script runs
+            if s.eval_episodes <= 0:
+                return True
             if self.next_eval is not None and self.num_timesteps >= self.next_eval:
                 self.next_eval += s.eval_every
                 return self.run_eval()
@@ -220,7 +226,7 @@ def main(argv=None) -> int:
     (out / "evaluations.jsonl").unlink(missing_ok=True)
     model.learn(total_timesteps=s.total_steps, callback=callbacks, progress_bar=s.progress)
     model.save(out / "final_model.zip")
-    if not evals or evals[-1]["step"] != model.num_timesteps:
+    if s.eval_episodes > 0 and (not evals or evals[-1]["step"] != model.num_timesteps):
         eval_cb.run_eval()
     wall = time.time() - start
 
@@ -234,7 +240,8 @@ def main(argv=None) -> int:
         "steps": int(model.num_timesteps), "wall_time_s": round(wall, 1),
         "device": str(model.device), "machine": platform.processor() or platform.machine(),
         "torch_threads": torch.get_num_threads(),
-        "best_success_rate": max(e["success_rate"] for e in evals), "final_eval": evals[-1],
+        "best_success_rate": max((e["success_rate"] for e in evals), default=None),
+        "final_eval": evals[-1] if evals else None,
     }
     export_sac_actor(best, out / "actor.json", obs_layout=obs_layout, training_settings=summary)
     (out / "summary.json").write_text(json.dumps(summary, indent=2))

@@ -39,17 +39,14 @@ void refresh(const VesselScene& scene, const Eigen::Vector3d& p, double radius, 
     const Eigen::Vector4d& sphere = scene.face_spheres[f];
     c.lower_bounds[i] = std::max(0.0, (p - sphere.head<3>()).norm() - sphere[3]);
   }
-  // Sort both arrays by the lower bound (small lists: insertion sort, no allocation).
-  for (std::size_t i = 1; i < n; ++i) {
-    const double lb = c.lower_bounds[i];
-    const int f = c.triangles[i];
-    std::size_t j = i;
-    for (; j > 0 && c.lower_bounds[j - 1] > lb; --j) {
-      c.lower_bounds[j] = c.lower_bounds[j - 1];
-      c.triangles[j] = c.triangles[j - 1];
-    }
-    c.lower_bounds[j] = lb;
-    c.triangles[j] = f;
+  // Sort both arrays by the lower bound (ties by triangle: deterministic), through per-thread scratch.
+  thread_local std::vector<std::pair<double, int>> order;
+  order.resize(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = {c.lower_bounds[i], c.triangles[i]};
+  std::sort(order.begin(), order.end());
+  for (std::size_t i = 0; i < n; ++i) {
+    c.lower_bounds[i] = order[i].first;
+    c.triangles[i] = order[i].second;
   }
   if (n == 0) {
     // No wall within `radius`: the point may move until it could be within reach of the wall.

@@ -46,6 +46,7 @@ TriangleGrid make_triangle_grid(const TriangleMesh& mesh, double cell) {
     }
     int r[3][2];
     for (int a = 0; a < 3; ++a) cell_range(g, a, bmin[a], bmax[a], r[a][0], r[a][1]);
+    g.first_cell.emplace_back(r[0][0], r[1][0], r[2][0]);
     for (int x = r[0][0]; x <= r[0][1]; ++x)
       for (int y = r[1][0]; y <= r[1][1]; ++y)
         for (int z = r[2][0]; z <= r[2][1]; ++z) pairs.emplace_back(cell_key(g, x, y, z), f);
@@ -77,12 +78,16 @@ void grid_candidates(const TriangleGrid& g, const Eigen::Vector3d& p, double rad
       auto it = std::lower_bound(g.keys.begin(), g.keys.end(), first);
       for (; it != g.keys.end() && *it <= last; ++it) {
         const std::size_t k = static_cast<std::size_t>(it - g.keys.begin());
-        out.insert(out.end(), g.items.begin() + g.begin[k], g.items.begin() + g.begin[k + 1]);
+        const int z = static_cast<int>(*it - cell_key(g, x, y, 0));
+        for (int i = g.begin[k]; i < g.begin[k + 1]; ++i) {
+          // A triangle spanning several cells is reported by the first of them inside the query box.
+          const int f = g.items[i];
+          const Eigen::Vector3i& c = g.first_cell[f];
+          if (std::max(c.x(), r[0][0]) == x && std::max(c.y(), r[1][0]) == y && std::max(c.z(), r[2][0]) == z)
+            out.push_back(f);
+        }
       }
     }
-  // A triangle spanning several cells was added once per cell.
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
 }  // namespace gw

@@ -18,14 +18,16 @@ struct TriangleGrid {
   std::vector<std::int64_t> keys;                    // occupied cells, ascending
   std::vector<int> begin;                            // keys.size() + 1 offsets into `items`
   std::vector<int> items;                            // triangles per cell
+  std::vector<Eigen::Vector3i> first_cell;           // per triangle: lowest cell of its bounding box
 };
 
 // Bins every triangle into the cells its bounding box overlaps. `cell` <= 0 picks twice the mean edge
 // length (at least 0.25 mm). Throws std::invalid_argument for an empty mesh.
 TriangleGrid make_triangle_grid(const TriangleMesh& mesh, double cell = 0);
 
-// Triangles stored in the cells that the box [p - radius, p + radius] overlaps, each once, in
-// ascending order: a superset of the triangles within `radius` of p. Clears `out` first.
+// Triangles stored in the cells that the box [p - radius, p + radius] overlaps, each once (reported
+// from the lowest overlapped cell it occupies, so no sort is needed), in a deterministic order: a
+// superset of the triangles within `radius` of p. Clears `out` first.
 void grid_candidates(const TriangleGrid& grid, const Eigen::Vector3d& p, double radius, std::vector<int>& out);
 
 }  // namespace gw

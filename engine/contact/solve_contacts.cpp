@@ -14,27 +14,52 @@ const Eigen::Matrix3d& xblock(const ContactWorkspace& ws, int i, int j) {
   return ws.xtt[static_cast<std::size_t>(i) * ws.nodes.size() + j];
 }
 
+Eigen::Matrix3d& xblock_mut(ContactWorkspace& ws, int i, int j) {
+  return ws.xtt[static_cast<std::size_t>(i) * ws.nodes.size() + j];
+}
+
+// The chain products between consecutive contact nodes, and the blocks of A^-1 that every solve needs:
+// each contact node with itself and with its neighbouring contact node (a midpoint's two nodes).
 void build_inverse_blocks(const BlockTridiagonalFactor& f, ContactWorkspace& ws) {
   const int k = static_cast<int>(ws.nodes.size());
   if (static_cast<int>(ws.xtt.size()) < k * k) ws.xtt.resize(static_cast<std::size_t>(k) * k);
   if (static_cast<int>(ws.chain.size()) < k) ws.chain.resize(k);
+  ws.x_built.assign(k, 0);
   // chain[s] = (-G_{u_s}) ... (-G_{u_{s+1}-1}), so (A^-1)(u_a, u_b) = chain[a] ... chain[b-1] Sigma_{u_b}.
   for (int s = 0; s + 1 < k; ++s) {
     Mat6& t = ws.chain[s];
     t = -f.g[ws.nodes[s]];
     for (int j = ws.nodes[s] + 1; j < ws.nodes[s + 1]; ++j) t = (t * (-f.g[j])).eval();
   }
-  Eigen::Matrix<double, 3, 6> q;
   for (int a = 0; a < k; ++a) {
-    ws.xtt[static_cast<std::size_t>(a) * k + a] = ws.sigma[ws.nodes[a]].topLeftCorner<3, 3>();
-    q = ws.chain[a].topRows<3>();
-    for (int b = a + 1; b < k; ++b) {
-      const Eigen::Matrix3d x = q * ws.sigma[ws.nodes[b]].leftCols<3>();
-      ws.xtt[static_cast<std::size_t>(a) * k + b] = x;
-      ws.xtt[static_cast<std::size_t>(b) * k + a] = x.transpose();
-      if (b + 1 < k) q = (q * ws.chain[b]).eval();
+    xblock_mut(ws, a, a) = ws.sigma[ws.nodes[a]].topLeftCorner<3, 3>();
+    if (a + 1 < k) {
+      const Eigen::Matrix3d x = ws.chain[a].topRows<3>() * ws.sigma[ws.nodes[a + 1]].leftCols<3>();
+      xblock_mut(ws, a, a + 1) = x;
+      xblock_mut(ws, a + 1, a) = x.transpose();
     }
   }
+}
+
+// Blocks of A^-1 between contact node b and every other contact node: O(k) products, walked outwards
+// from b. Only the nodes of contacts that press need them (see build_column), not all k^2 pairs.
+void build_inverse_column(ContactWorkspace& ws, int b) {
+  if (ws.x_built[b]) return;
+  const int k = static_cast<int>(ws.nodes.size());
+  Eigen::Matrix<double, 6, 3> right = ws.sigma[ws.nodes[b]].leftCols<3>();
+  for (int a = b - 1; a >= 0; --a) {  // (A^-1)(u_a, u_b) = chain[a] ... chain[b-1] Sigma_b
+    right = (ws.chain[a] * right).eval();
+    xblock_mut(ws, a, b) = right.topRows<3>();
+    xblock_mut(ws, b, a) = right.topRows<3>().transpose();
+  }
+  Eigen::Matrix<double, 3, 6> left = ws.chain[b].topRows<3>();
+  for (int a = b + 1; a < k; ++a) {  // (A^-1)(u_b, u_a) = chain[b] ... chain[a-1] Sigma_a
+    const Eigen::Matrix3d x = left * ws.sigma[ws.nodes[a]].leftCols<3>();
+    xblock_mut(ws, b, a) = x;
+    xblock_mut(ws, a, b) = x.transpose();
+    if (a + 1 < k) left = (left * ws.chain[a]).eval();
+  }
+  ws.x_built[b] = 1;
 }
 
 }  // namespace
@@ -83,6 +108,9 @@ Eigen::Matrix3d compliance_block(const std::vector<ContactPoint>& contacts, cons
 // Column block c of W (3 columns, every contact's rows), built the first time contact c's impulse changes.
 void build_column(const std::vector<ContactPoint>& contacts, ContactWorkspace& ws, int ci) {
   const int m = static_cast<int>(contacts.size());
+  const ContactPoint& c = contacts[ci];
+  build_inverse_column(ws, ws.slot[c.node_a - ws.first_free]);
+  if (c.node_b >= 0) build_inverse_column(ws, ws.slot[c.node_b - ws.first_free]);
   for (int di = 0; di < m; ++di)
     ws.w.block<3, 3>(3 * di, 3 * ci) = di == ci ? ws.w_diag[ci] : compliance_block(contacts, ws, di, ci);
   ws.column_built[ci] = 1;
@@ -142,6 +170,8 @@ ContactSolveResult solve_contact_impulses(const std::vector<ContactPoint>& conta
     double change = 0, largest = 1e-300;
     for (int ci = 0; ci < m; ++ci) {
       const int r = 3 * ci;
+      // Not pressing and still separating: the projection keeps all three impulses at zero.
+      if (p[r] == 0 && u[r] >= 0) continue;
       const Eigen::Matrix3d& wd = ws.w_diag[ci];
       const Eigen::Vector3d old = p.segment<3>(r);
       const double pn = std::max(0.0, old[0] - u[r] / wd(0, 0));

@@ -5,7 +5,9 @@
 // W = H A^-1 H^T. Projected Gauss-Seidel solves
 //   0 <= p_n  _|_  g / dt + u_n >= 0,      |p_t| <= mu p_n, sticking (u_t = 0) inside the cone.
 // W is built from the block-tridiagonal factorisation: selected blocks of A^-1 between contact nodes,
-// chained through the G factors, O(N + n_c^2) instead of one solve per constraint.
+// chained through the G factors, instead of one solve per constraint. Only the columns of contacts
+// whose impulse moves are built (most contacts found by the swept margin never press): O(N) plus
+// O(n_c) per pressing contact, instead of O(N + n_c^2).
 #include <Eigen/Core>
 #include <vector>
 
@@ -19,7 +21,8 @@ struct ContactWorkspace {
   std::vector<int> nodes;            // sorted unique local nodes touched by contacts
   std::vector<int> slot;             // local node -> index in `nodes` (-1 if none)
   std::vector<Mat6> chain;           // products of -G between consecutive contact nodes
-  std::vector<Eigen::Matrix3d> xtt;  // translational blocks of A^-1 between contact nodes (dense)
+  std::vector<Eigen::Matrix3d> xtt;  // translational blocks of A^-1 between contact nodes (k x k)
+  std::vector<char> x_built;         // per contact node: its row and column of xtt are filled
   Eigen::MatrixXd w;                 // compliance, 3 rows per contact; only the built columns are valid
   std::vector<Eigen::Matrix3d> w_diag;  // diagonal blocks of W, one per contact
   std::vector<char> column_built;    // per contact: its column block of W is in `w`

@@ -11,9 +11,10 @@
 namespace gw {
 
 // Per contact point (node or element midpoint), the wall triangles within `gathered` of `centre`, found
-// by an FCL query and sorted by a lower bound of their distance to `centre`. Any triangle within
-// (gathered - |p - centre|) of a point p is in the list, so queries stay exact while the point moves
-// little; a pure accelerator: results are identical with an empty cache.
+// by a grid range query (engine/scene/triangle_grid) and sorted by a lower bound of their distance to
+// `centre`. Any triangle within (gathered - |p - centre|) of a point p is in the list, so queries stay
+// exact while the point moves little; a pure accelerator: contacts, normals and penetrations are
+// identical with an empty cache (only distances beyond what a query needs come back as lower bounds).
 struct WallCandidates {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   double gathered = -1;             // query radius used at `centre`; < 0: invalid

@@ -31,8 +31,11 @@ TriangleGrid make_triangle_grid(const TriangleMesh& mesh, double cell) {
       for (int c = 0; c < 3; ++c) edges += (mesh.V.row(mesh.F(f, c)) - mesh.V.row(mesh.F(f, (c + 1) % 3))).norm();
     cell = std::max(0.25, 2.0 * edges / (3.0 * nf));
   }
-  g.cell = cell;
   const Eigen::Vector3d lo = mesh.V.colwise().minCoeff().transpose(), hi = mesh.V.colwise().maxCoeff().transpose();
+  // Cell keys are 64-bit and per-axis indices int: coarsen the grid of a mesh with a far stray vertex
+  // (or of tiny triangles over a huge extent) rather than overflow them.
+  while (((hi - lo) / cell).maxCoeff() > 1e6) cell *= 2;
+  g.cell = cell;
   g.origin = lo;
   for (int a = 0; a < 3; ++a) g.dims[a] = std::max(1, static_cast<int>(std::floor((hi[a] - lo[a]) / cell)) + 1);
   // (cell key, triangle) pairs, sorted, then compressed into rows.

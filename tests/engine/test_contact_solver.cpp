@@ -45,6 +45,20 @@ TEST_CASE("a point outside the grid's box finds nothing, an empty mesh is refuse
   CHECK_THROWS_AS(make_triangle_grid(TriangleMesh{}), std::invalid_argument);
 }
 
+TEST_CASE("a stray far vertex coarsens the grid instead of overflowing its cell keys", "[contact][grid]") {
+  TriangleMesh mesh;
+  mesh.V.resize(5, 3);
+  mesh.V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1e12, -1e12, 1e12;  // the last vertex is used by no face
+  mesh.F.resize(4, 3);
+  mesh.F << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3;
+  const TriangleGrid g = make_triangle_grid(mesh);
+  CHECK(g.dims.maxCoeff() <= 1000001);
+  std::vector<int> out;
+  grid_candidates(g, Eigen::Vector3d(0.2, 0.2, 0.2), 0.1, out);
+  std::sort(out.begin(), out.end());
+  CHECK(out == std::vector<int>{0, 1, 2, 3});  // one coarse cell holds the whole tetrahedron
+}
+
 namespace {
 
 // Contact rows H (3 per contact: n, t1, t2) over the 6 DOF per node of a chain of `nodes` nodes.

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "anatomy_fixture.hpp"
+#include "random_systems.hpp"
 #include "engine/contact/solve_contacts.hpp"
 
 using namespace gw;
@@ -82,14 +83,7 @@ TEST_CASE("PGS with lazily built W matches the dense textbook sweep and satisfie
   std::uniform_real_distribution<double> u(-1, 1), gap(0.0, 0.02);
   const int nodes = 24;
   const double dt = 5e-4, mu = 0.3;
-  // A stiff, well-coupled chain like the wire's implicit system.
-  BlockTridiagonal a;
-  a.resize(nodes);
-  for (int i = 0; i < nodes; ++i) {
-    Mat6 r = Mat6::NullaryExpr([&](Eigen::Index, Eigen::Index) { return u(rng); });
-    a.diag[i] = r * r.transpose() + 14.0 * Mat6::Identity();
-    if (i + 1 < nodes) a.lower[i] = Mat6::NullaryExpr([&](Eigen::Index, Eigen::Index) { return u(rng); });
-  }
+  const BlockTridiagonal a = test::random_spd(nodes, rng);  // a well-coupled chain like the wire's system
   BlockTridiagonalFactor f;
   REQUIRE(factor_block_tridiagonal(a, f));
   // Node and midpoint contacts; about half approach the wall (they will press), half move away.
@@ -119,14 +113,7 @@ TEST_CASE("PGS with lazily built W matches the dense textbook sweep and satisfie
   const Eigen::VectorXd p = ws.impulse.head(3 * m);
 
   // Dense reference: W from the dense inverse, the same sweep order and local projection.
-  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(6 * nodes, 6 * nodes);
-  for (int i = 0; i < nodes; ++i) {
-    dense.block<6, 6>(6 * i, 6 * i) = a.diag[i];
-    if (i + 1 < nodes) {
-      dense.block<6, 6>(6 * (i + 1), 6 * i) = a.lower[i];
-      dense.block<6, 6>(6 * i, 6 * (i + 1)) = a.lower[i].transpose();
-    }
-  }
+  const Eigen::MatrixXd dense = test::to_dense(a);
   const Eigen::MatrixXd h = contact_rows(contacts, nodes);
   const Eigen::MatrixXd w = h * dense.ldlt().solve(h.transpose());
   Eigen::VectorXd bias(3 * m);

@@ -88,11 +88,8 @@ WallDistance cached_wall_distance(const WireModel& model, const VesselScene& sce
     c.bound = far.signed_distance;
     return far;
   }
-  WallDistance wd = wall_distance_among(scene, p, c.triangles, cutoff, &c.lower_bounds, moved, c.closest);
+  WallDistance wd = wall_distance_among(scene, p, c.triangles, cutoff, &c.lower_bounds, moved, &c.closest);
   if (wd.triangle < 0) wd.signed_distance = cutoff;  // nothing within the cutoff: well inside
-  c.closest = wd.triangle < 0 ? -1
-                              : static_cast<int>(std::find(c.triangles.begin(), c.triangles.end(), wd.triangle) -
-                                                 c.triangles.begin());
   c.bound_point = p;
   c.bound = wd.signed_distance;  // exact, or (triangle < 0) a lower bound
   return wd;

@@ -10,11 +10,8 @@ namespace {
 const double kPenetrationRecovery = 0.3;  // fraction of a penetration removed per sub-step
 
 // Translational 3x3 block of A^-1 between contact-node slots i and j.
-const Eigen::Matrix3d& xblock(const ContactWorkspace& ws, int i, int j) {
-  return ws.xtt[static_cast<std::size_t>(i) * ws.nodes.size() + j];
-}
-
-Eigen::Matrix3d& xblock_mut(ContactWorkspace& ws, int i, int j) {
+template <class Workspace>
+auto& xblock(Workspace& ws, int i, int j) {
   return ws.xtt[static_cast<std::size_t>(i) * ws.nodes.size() + j];
 }
 
@@ -32,11 +29,11 @@ void build_inverse_blocks(const BlockTridiagonalFactor& f, ContactWorkspace& ws)
     for (int j = ws.nodes[s] + 1; j < ws.nodes[s + 1]; ++j) t = (t * (-f.g[j])).eval();
   }
   for (int a = 0; a < k; ++a) {
-    xblock_mut(ws, a, a) = ws.sigma[ws.nodes[a]].topLeftCorner<3, 3>();
+    xblock(ws, a, a) = ws.sigma[ws.nodes[a]].topLeftCorner<3, 3>();
     if (a + 1 < k) {
       const Eigen::Matrix3d x = ws.chain[a].topRows<3>() * ws.sigma[ws.nodes[a + 1]].leftCols<3>();
-      xblock_mut(ws, a, a + 1) = x;
-      xblock_mut(ws, a + 1, a) = x.transpose();
+      xblock(ws, a, a + 1) = x;
+      xblock(ws, a + 1, a) = x.transpose();
     }
   }
 }
@@ -49,14 +46,14 @@ void build_inverse_column(ContactWorkspace& ws, int b) {
   Eigen::Matrix<double, 6, 3> right = ws.sigma[ws.nodes[b]].leftCols<3>();
   for (int a = b - 1; a >= 0; --a) {  // (A^-1)(u_a, u_b) = chain[a] ... chain[b-1] Sigma_b
     right = (ws.chain[a] * right).eval();
-    xblock_mut(ws, a, b) = right.topRows<3>();
-    xblock_mut(ws, b, a) = right.topRows<3>().transpose();
+    xblock(ws, a, b) = right.topRows<3>();
+    xblock(ws, b, a) = right.topRows<3>().transpose();
   }
   Eigen::Matrix<double, 3, 6> left = ws.chain[b].topRows<3>();
   for (int a = b + 1; a < k; ++a) {  // (A^-1)(u_b, u_a) = chain[b] ... chain[a-1] Sigma_a
     const Eigen::Matrix3d x = left * ws.sigma[ws.nodes[a]].leftCols<3>();
-    xblock_mut(ws, b, a) = x;
-    xblock_mut(ws, a, b) = x.transpose();
+    xblock(ws, b, a) = x;
+    xblock(ws, a, b) = x.transpose();
     if (a + 1 < k) left = (left * ws.chain[a]).eval();
   }
   ws.x_built[b] = 1;

@@ -13,10 +13,12 @@ std::int64_t cell_key(const TriangleGrid& g, int x, int y, int z) {
   return (static_cast<std::int64_t>(x) * g.dims.y() + y) * g.dims.z() + z;
 }
 
-// Cell index range [lo, hi] covering [a, b] along one axis, clamped to the grid.
+// Cell index range [lo, hi] covering [a, b] along one axis, clamped to the grid (in floating point
+// first: a far query point must not overflow the int cast; lo > hi when [a, b] misses the grid).
 void cell_range(const TriangleGrid& g, int axis, double a, double b, int& lo, int& hi) {
-  lo = std::max(0, static_cast<int>(std::floor((a - g.origin[axis]) / g.cell)));
-  hi = std::min(g.dims[axis] - 1, static_cast<int>(std::floor((b - g.origin[axis]) / g.cell)));
+  const double top = g.dims[axis];
+  lo = static_cast<int>(std::clamp(std::floor((a - g.origin[axis]) / g.cell), 0.0, top));
+  hi = static_cast<int>(std::clamp(std::floor((b - g.origin[axis]) / g.cell), -1.0, top - 1));
 }
 
 }  // namespace

@@ -118,7 +118,7 @@ double nearest_triangle(const VesselScene& scene, const Eigen::Vector3d& p, int&
 }
 
 WallDistance wall_distance_among(const VesselScene& scene, const Eigen::Vector3d& p, const std::vector<int>& triangles,
-                                 double cutoff, const std::vector<double>* lower_bounds, double moved, int first) {
+                                 double cutoff, const std::vector<double>* lower_bounds, double moved, int* hint) {
   WallDistance best;
   best.signed_distance = std::numeric_limits<double>::infinity();
   double best_d2 = cutoff * cutoff;
@@ -126,7 +126,9 @@ WallDistance wall_distance_among(const VesselScene& scene, const Eigen::Vector3d
   Eigen::Vector3d best_diff = Eigen::Vector3d::Zero();
   const auto& V = scene.mesh.V;
   const auto& F = scene.mesh.F;
-  auto consider = [&](int f) {
+  int best_position = -1;
+  auto consider = [&](int position) {
+    const int f = triangles[position];
     // Early out: the triangle lies inside its bounding sphere.
     const Eigen::Vector4d& sphere = scene.face_spheres[f];
     const double dc = (p - sphere.head<3>()).norm() - sphere[3];
@@ -150,20 +152,23 @@ WallDistance wall_distance_among(const VesselScene& scene, const Eigen::Vector3d
       best_d2 = d2;
       best_cos = cosv;
       best.triangle = f;
+      best_position = position;
       best.closest = c;
       best_diff = diff;
     }
   };
   // The hinted triangle first (usually the last query's closest): a tight best distance from the start
   // lets the bounding-sphere test reject nearly every other triangle.
-  if (first >= 0 && first < static_cast<int>(triangles.size())) consider(triangles[first]);
+  const int first = hint ? *hint : -1;
+  if (first >= 0 && first < static_cast<int>(triangles.size())) consider(first);
   for (std::size_t i = 0; i < triangles.size(); ++i) {
     if (lower_bounds) {
       const double lb = (*lower_bounds)[i] - moved;
       if (lb > 0 && lb * lb > best_d2 * (1 + 1e-9) + 1e-18) break;  // sorted: nothing later is closer
     }
-    if (static_cast<int>(i) != first) consider(triangles[i]);
+    if (static_cast<int>(i) != first) consider(static_cast<int>(i));
   }
+  if (hint) *hint = best_position;
   if (best.triangle < 0) return best;
   const int f = best.triangle;
   const Eigen::Vector3d n = scene.face_normals.row(f).transpose();

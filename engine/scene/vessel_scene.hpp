@@ -47,11 +47,12 @@ WallDistance wall_distance(const VesselScene& scene, const Eigen::Vector3d& p);
 // Closest point among `triangles` only; signed_distance = +inf and triangle = -1 if none is within
 // `cutoff`. Triangles whose bounding sphere is farther than the best so far are skipped. With
 // `lower_bounds` (ascending, one per triangle, lower bounds of the distance to a point `moved` away
-// from p), the scan stops at the first triangle that cannot be closer than the best. `first`: a position
-// in `triangles` to try before the others (e.g. the previous closest); the result does not depend on it.
+// from p), the scan stops at the first triangle that cannot be closer than the best. `hint`: in, a
+// position in `triangles` to try before the others (e.g. the previous closest; the result does not
+// depend on it); out, the position of the closest triangle (-1 if none).
 WallDistance wall_distance_among(const VesselScene& scene, const Eigen::Vector3d& p, const std::vector<int>& triangles,
                                  double cutoff, const std::vector<double>* lower_bounds = nullptr, double moved = 0,
-                                 int first = -1);
+                                 int* hint = nullptr);
 
 // Every triangle within `radius` of `p` (FCL sphere-vs-BVH collision query), appended to `out` after
 // clearing it.

@@ -43,6 +43,9 @@ TEST_CASE("a point outside the grid's box finds nothing, an empty mesh is refuse
   std::vector<int> out{1, 2, 3};
   triangles_near(a.scene, Eigen::Vector3d(1e4, 1e4, 1e4), 1.0, out);
   CHECK(out.empty());
+  out = {1};
+  triangles_near(a.scene, Eigen::Vector3d(-1e15, 1e15, 0), 1.0, out);  // beyond int cell indices
+  CHECK(out.empty());
   CHECK_THROWS_AS(make_triangle_grid(TriangleMesh{}), std::invalid_argument);
 }
 

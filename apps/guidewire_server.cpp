@@ -18,7 +18,8 @@ void on_signal(int) {
 int main(int argc, char** argv) {
   CLI::App app{"Guidewire navigation environment server (JSON lines over TCP)"};
   gw::ServerOptions options;
-  std::string anatomies = "train", index = gw::default_anatomy_index(), wire_json, control_mode = "auto";
+  std::string anatomies = "train", index = gw::default_anatomy_index(), wire_json, control_mode = "auto",
+              omega_plane = gw::omega_plane_name(gw::TaskConfig{}.omega_plane);
   gw::TaskConfig config;
   app.add_option("--port", options.port, "TCP port; 0 picks a free one (printed as the first stdout line)")->required();
   app.add_option("--host", options.host, "address to listen on")->capture_default_str();
@@ -29,6 +30,9 @@ int main(int argc, char** argv) {
   app.add_option("--wire", wire_json, "wire parameter JSON (default: 0.014\" coronary wire)");
   app.add_option("--control", control_mode, "when the action applies: always, near_bifurcation, auto")
       ->capture_default_str();
+  app.add_option("--omega-plane", omega_plane,
+                 "omega's plane: approach (obs/2) or correct_branch (the paper's, obs/1)")
+      ->capture_default_str();
   app.add_option("--step-time-limit", options.session.step_time_limit_s,
                  "seconds one env step may run before it is cut off with an error (0 = none)")
       ->capture_default_str();
@@ -38,6 +42,7 @@ int main(int argc, char** argv) {
 
   try {
     config.control_mode = gw::parse_control_mode(control_mode);
+    config.omega_plane = gw::parse_omega_plane(omega_plane);
     const gw::WireParams wire = wire_json.empty() ? gw::default_wire_params() : gw::load_wire_params(wire_json);
     const gw::NavigationTask task = gw::make_navigation_task(config, wire, gw::load_anatomies(anatomies, index));
     gw::TcpServer server(task, options);

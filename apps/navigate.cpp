@@ -67,10 +67,11 @@ int main(int argc, char** argv) {
     }
     // Fail on the policy before the simulation starts: a missing or mismatched file is a user error.
     auto make_controller = [&] { return gw::make_controller(controller_kind, policy); };
-    make_controller();
+    gw::TaskConfig config;
+    make_controller()->adapt(config);  // an actor trained on the paper's omega gets the paper's omega
 
     const gw::WireParams wire = wire_path.empty() ? gw::default_wire_params() : gw::load_wire_params(wire_path);
-    const gw::NavigationTask task = gw::make_navigation_task(gw::TaskConfig{}, wire, {nav.anatomy});
+    const gw::NavigationTask task = gw::make_navigation_task(config, wire, {nav.anatomy});
     std::vector<gw::EpisodeRequest> requests;
     try {
       requests = gw::plan_episodes(task, 0, target, episodes, seed);

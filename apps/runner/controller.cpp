@@ -14,11 +14,12 @@ class PolicyController final : public Controller {
   explicit PolicyController(const std::string& path) : actor_(load_actor(path)) {
     if (actor_.obs_size() != kObservationSize)
       throw std::runtime_error(path + ": the actor takes " + std::to_string(actor_.obs_size()) +
-                               " observations, the task gives " + std::to_string(kObservationSize) + " (" +
-                               kObservationLayout + ")");
-    if (actor_.obs_layout() != kObservationLayout)
-      throw std::runtime_error(path + ": the actor was trained on observation layout '" + actor_.obs_layout() +
-                               "', the task gives '" + kObservationLayout + "'");
+                               " observations, the task gives " + std::to_string(kObservationSize));
+    try {
+      omega_plane_ = omega_plane_of_layout(actor_.obs_layout());
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error(path + ": the actor was trained on an unknown observation: " + e.what());
+    }
     if (actor_.action_size() != 1)
       throw std::runtime_error(path + ": the actor outputs " + std::to_string(actor_.action_size()) +
                                " actions, the task takes 1 (rotation)");
@@ -26,6 +27,7 @@ class PolicyController final : public Controller {
     action_.resize(1);
   }
   const std::string& name() const override { return name_; }
+  void adapt(TaskConfig& config) const override { config.omega_plane = omega_plane_; }
   double act(const Observation& obs) override {
     for (int i = 0; i < kObservationSize; ++i) obs_[i] = static_cast<float>(obs[static_cast<std::size_t>(i)]);
     actor_.act(obs_, action_);
@@ -35,6 +37,7 @@ class PolicyController final : public Controller {
  private:
   std::string name_ = "sac-policy";
   ActorMLP actor_;
+  OmegaPlane omega_plane_ = OmegaPlane::kApproach;
   Eigen::VectorXf obs_, action_;
 };
 

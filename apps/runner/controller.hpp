@@ -13,8 +13,11 @@ class Controller {
  public:
   virtual ~Controller() = default;
   virtual const std::string& name() const = 0;
-  // Rotation action in [-1, 1] for observation `obs` (layout guidewire-nav/obs/1).
+  // Rotation action in [-1, 1] for observation `obs`.
   virtual double act(const Observation& obs) = 0;
+  // Sets what the controller needs of the task's observation (an actor: the omega plane it was trained
+  // with). Build the task with the adapted config; baselines take the default.
+  virtual void adapt(TaskConfig& /*config*/) const {}
 };
 
 // The exported SAC actor at `actor_path`. Throws std::runtime_error naming the file when it cannot

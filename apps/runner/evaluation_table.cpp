@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <map>
+#include <optional>
 #include <random>
 #include <sstream>
 
@@ -70,8 +71,8 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
         nav.anatomy.name = name;
         anatomies.push_back(std::move(nav.anatomy));
       }
-      const NavigationTask task = make_navigation_task(TaskConfig{}, default_wire_params(), std::move(anatomies));
-      const std::vector<EpisodeRequest> requests = row_requests(task, episodes, o.seed);
+      const NavigationTask default_task = make_navigation_task(TaskConfig{}, default_wire_params(), anatomies);
+      const std::vector<EpisodeRequest> requests = row_requests(default_task, episodes, o.seed);
       TraceOptions trace;
       trace.wire_shape_every = 0;
       for (const std::string& kind : o.controllers) {
@@ -83,6 +84,12 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
           r["notes"].push_back("SAC column: the shipped policy (trained on the 4 training anatomies), not one "
                                "trained on sensitivity/base only as in the paper");
         auto make = [&] { return make_controller(kind, policy); };
+        TaskConfig config;
+        make()->adapt(config);  // an actor trained on the paper's omega (obs/1) is evaluated with it
+        std::optional<NavigationTask> adapted;
+        if (config.omega_plane != default_task.config.omega_plane)
+          adapted = make_navigation_task(config, default_wire_params(), anatomies);
+        const NavigationTask& task = adapted ? *adapted : default_task;
         const nlohmann::json summary = summarize_episodes(run_batch(task, requests, make, o.threads, trace));
         const std::string column = kind == "policy" ? "sac-policy" : kind;
         r["results"][column] = summary;

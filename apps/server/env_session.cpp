@@ -68,7 +68,7 @@ std::string spec_json(const NavigationTask& task) {
   const TaskConfig& c = task.config;
   json j = {{"ok", true},
             {"protocol", kProtocolVersion},
-            {"obs_layout", kObservationLayout},
+            {"obs_layout", observation_layout(c.omega_plane)},
             {"observation_space",
              {{"shape", {kObservationSize}}, {"low", observation_json(low)}, {"high", observation_json(high)},
               {"names", names}}},
@@ -81,6 +81,7 @@ std::string spec_json(const NavigationTask& task) {
               {"push_mm_per_s", c.push_mm_per_s},
               {"max_rotation_rad_per_s", c.max_rotation_rad_per_s},
               {"control_mode", control_mode_name(c.control_mode)},
+              {"omega_plane", omega_plane_name(c.omega_plane)},
               {"control_radius_mm", c.control_radius_mm},
               {"success_radius_mm", c.success_radius_mm}}}};
   return j.dump();

@@ -42,12 +42,20 @@ Course make_course(const CenterlineGraph& graph, const std::vector<Polyline>& br
     const Polyline& correct = branch_lines.at(static_cast<size_t>(pb.correct_child));
     cb.correct_direction = child_direction(correct, cb.centre, config.branch_direction_mm);
     const Eigen::Vector3d& c = cb.correct_direction;
+    const Eigen::Vector3d before = polyline_point(course.line, std::max(0.0, cb.arc - config.branch_direction_mm));
+    const Eigen::Vector3d approach = cb.centre - before;
+    cb.approach_direction = approach.norm() > 1e-9 ? Eigen::Vector3d(approach.normalized()) : c;
+    const bool paper = config.omega_plane == OmegaPlane::kCorrectBranch;
+    cb.omega_normal = paper ? c : cb.approach_direction;
+    const Eigen::Vector3d& n = cb.omega_normal;
     for (int w : pb.wrong_children) {
       const Eigen::Vector3d wd = child_direction(branch_lines.at(static_cast<size_t>(w)), cb.centre,
                                                  config.branch_direction_mm);
-      Eigen::Vector3d wp = wd - wd.dot(c) * c;
-      const double n = wp.norm();
-      wp = n > 1e-6 ? Eigen::Vector3d(wp / n) : Eigen::Vector3d::Zero();
+      // Paper: w itself. Approach plane: from the correct towards the wrong branch, as the rolled tip sees it.
+      const Eigen::Vector3d away = paper ? wd : Eigen::Vector3d(wd - c);
+      Eigen::Vector3d wp = away - away.dot(n) * n;
+      const double len = wp.norm();
+      wp = len > 1e-6 ? Eigen::Vector3d(wp / len) : Eigen::Vector3d::Zero();
       cb.wrong_branches.push_back(w);
       cb.wrong_in_plane.push_back(wp);
     }

@@ -18,8 +18,11 @@ struct CourseBifurcation {
   int first_segment = 0;         // first course segment past the centre (the correct continuation)
   Eigen::Vector3d correct_direction = Eigen::Vector3d::UnitX();  // c: unit, centre -> correct child
   std::vector<int> wrong_branches;                 // graph branch ids of the wrong children
-  std::vector<Eigen::Vector3d> wrong_in_plane;     // w_p: unit wrong directions projected on the plane
-                                                   // normal to c (zero when w is parallel to c)
+  Eigen::Vector3d approach_direction = Eigen::Vector3d::UnitX();  // p: unit, along the course into the centre
+  Eigen::Vector3d omega_normal = Eigen::Vector3d::UnitX();  // normal of omega's plane: c or p (TaskConfig)
+  std::vector<Eigen::Vector3d> wrong_in_plane;     // w_p: unit wrong directions in omega's plane: w (or w - c
+                                                   // for OmegaPlane::kApproach) projected on it; zero when
+                                                   // parallel to the normal
 };
 
 struct Course {

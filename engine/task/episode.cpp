@@ -110,7 +110,7 @@ void observe(const NavigationTask& task, EpisodeState& s, bool first) {
         s.samples.tangent[0], s.samples.tangent[kTipSampleCount - 1], (kTipSampleCount - 1) * c.tip_sample_spacing_mm);
     omega = -1.0;
     for (const Eigen::Vector3d& wp : b.wrong_in_plane)
-      omega = std::max(omega, wrong_branch_alignment(kappa, b.correct_direction, wp, task.wire.params.tip_curvature_per_mm));
+      omega = std::max(omega, wrong_branch_alignment(kappa, b.omega_normal, wp, task.wire.params.tip_curvature_per_mm));
     if (b.wrong_in_plane.empty()) omega = 0.0;
   }
   o[obs_index::kOmega] = omega;

@@ -1,6 +1,7 @@
 #include "engine/task/observation.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace gw {
 
@@ -9,6 +10,18 @@ const std::array<const char*, kObservationSize>& observation_names() {
       "theta_t_1", "theta_t_2", "theta_t_3", "theta_prev_1", "theta_prev_2", "theta_prev_3",
       "lambda_t",  "lambda_prev", "action",  "omega",        "speed"};
   return names;
+}
+
+const char* observation_layout(OmegaPlane plane) {
+  return plane == OmegaPlane::kCorrectBranch ? "guidewire-nav/obs/1" : "guidewire-nav/obs/2";
+}
+
+OmegaPlane omega_plane_of_layout(const std::string& layout) {
+  for (OmegaPlane p : {OmegaPlane::kCorrectBranch, OmegaPlane::kApproach})
+    if (layout == observation_layout(p)) return p;
+  throw std::invalid_argument("observation layout '" + layout + "' is not one of " +
+                              observation_layout(OmegaPlane::kCorrectBranch) + ", " +
+                              observation_layout(OmegaPlane::kApproach));
 }
 
 void observation_bounds(const TaskConfig& config, Observation& low, Observation& high) {

@@ -1,6 +1,7 @@
 #pragma once
 // The observation of paper 2.2.3, Omega = {theta_t, theta_{t-n dt}, lambda_t, lambda_{t-n dt}, a_t, omega, s},
-// as a fixed-size vector. Layout "guidewire-nav/obs/1" (11 floats):
+// as a fixed-size vector. Layouts "guidewire-nav/obs/1" (the paper's omega) and "guidewire-nav/obs/2"
+// (omega in the approach plane; TaskConfig::omega_plane), 11 floats each:
 //   [0..2]  theta_t      t_i . c_i, i = 1..3: unit wire tangent at 0, 2, 4 mm from the tip (t_i) against
 //                        the unit centerline tangent h = 4 mm ahead of that point's projection (c_i)
 //   [3..5]  theta_{t-n dt}  the same one env step earlier (n dt = frame_skip * dt)
@@ -10,7 +11,9 @@
 //   [8]     a_t          the rotation action applied during the last env step, in [-1, 1] (0 when the
 //                        policy was not in control)
 //   [9]     omega = k_p . w_p in [-1, 1]: tip curvature vector and wrong-branch direction, both projected on
-//                        the plane normal to the correct branch; w_p is unit, k_p is divided by
+//                        the plane normal to the correct branch (obs/1); in obs/2 the curvature and the
+//                        direction from the correct to the wrong branch (w - c), projected on the plane normal
+//                        to the approach direction p (course.hpp). w_p is unit, k_p is divided by
 //                        max(|k_p|, kappa_rest/2) so omega is the cosine of the angle between them while the
 //                        tip is curved and fades to 0 when the wall straightens it. With several wrong
 //                        children, the largest (most dangerous) value.
@@ -22,6 +25,7 @@
 // shape-invariant observation is meant to leave out; and 11 inputs keep the actor small and fast.
 #include <Eigen/Core>
 #include <array>
+#include <string>
 
 #include "engine/task/task_config.hpp"
 
@@ -29,7 +33,10 @@ namespace gw {
 
 inline constexpr int kThetaCount = 3;
 inline constexpr int kObservationSize = 2 * kThetaCount + 5;
-inline constexpr const char* kObservationLayout = "guidewire-nav/obs/1";
+// The layout an observation computed with `plane` has: obs/1 (kCorrectBranch), obs/2 (kApproach).
+const char* observation_layout(OmegaPlane plane);
+// The inverse, for an actor's recorded layout; throws std::invalid_argument naming the known layouts.
+OmegaPlane omega_plane_of_layout(const std::string& layout);
 using Observation = std::array<double, kObservationSize>;
 
 namespace obs_index {

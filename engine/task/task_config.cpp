@@ -49,4 +49,14 @@ const char* control_mode_name(ControlMode mode) {
   return "auto";
 }
 
+OmegaPlane parse_omega_plane(const std::string& text) {
+  if (text == "correct_branch") return OmegaPlane::kCorrectBranch;
+  if (text == "approach") return OmegaPlane::kApproach;
+  throw std::invalid_argument("omega plane '" + text + "' is not one of correct_branch, approach");
+}
+
+const char* omega_plane_name(OmegaPlane plane) {
+  return plane == OmegaPlane::kCorrectBranch ? "correct_branch" : "approach";
+}
+
 }  // namespace gw

@@ -12,6 +12,16 @@ enum class ControlMode {
   kAuto,               // kAlways when the path has at most one bifurcation, else kNearBifurcation
 };
 
+// The plane omega is measured in (observation.hpp, omega).
+enum class OmegaPlane {
+  kCorrectBranch,  // paper 2.2.3: tip curvature and wrong direction w projected on the plane normal to the
+                   // correct branch c. Blind where c is ~90 deg off the approach: the tip's bend then
+                   // lies in that plane's normal and w_p ~ the approach axis, so omega ~ 0 for every roll
+  kApproach,       // curvature and (w - c) projected on the plane normal to the approach direction p (the
+                   // axis the proximal rotation rolls the tip bend around): -1 when the tip bends from the
+                   // wrong towards the correct branch. Equals kCorrectBranch's reading when c is along p
+};
+
 struct TaskConfig {
   // --- Driving the wire (constant push + rotation from the action) ---
   double dt_s = 0.01;                    // physics time step handed to make_wire_model
@@ -31,6 +41,7 @@ struct TaskConfig {
   double lookahead_mm = 4.0;             // h: centerline tangent c_i taken h ahead of each sample
   double branch_direction_mm = 6.0;      // c and w (omega) = directions from a bifurcation centre to
                                          // the points this far along the correct / wrong child
+  OmegaPlane omega_plane = OmegaPlane::kApproach;  // kCorrectBranch = the paper's definition (obs/1)
   double max_abs_speed_ratio = 5.0;      // s = v.c / push is clipped to +-this (bounded obs space)
   double max_lambda_ratio = 4.0;         // lambda_t / lambda_0 is clipped to [0, this]
   // --- Episode end ---
@@ -52,5 +63,9 @@ void check_task_config(const TaskConfig& config);
 // "always" | "near_bifurcation" | "auto"; throws std::invalid_argument for anything else.
 ControlMode parse_control_mode(const std::string& text);
 const char* control_mode_name(ControlMode mode);
+
+// "correct_branch" | "approach"; throws std::invalid_argument for anything else.
+OmegaPlane parse_omega_plane(const std::string& text);
+const char* omega_plane_name(OmegaPlane plane);
 
 }  // namespace gw

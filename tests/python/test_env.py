@@ -117,3 +117,23 @@ def test_subproc_vec_env_with_one_server_per_env(server_bin):
         assert all("progress_mm" in i for i in infos)
     finally:
         venv.close()
+
+
+def test_omega_plane_is_chosen_at_the_server_and_reported(server_bin):
+    # Same episode, same actions: only omega (index 9) may differ between the two planes.
+    ours = GuidewireEnv(anatomies="t3_out_of_plane_steep", options={"target": 1})
+    paper = GuidewireEnv(anatomies="t3_out_of_plane_steep", options={"target": 1},
+                         server_args=["--omega-plane", "correct_branch"])
+    try:
+        assert ours.spec_reply["obs_layout"] == "guidewire-nav/obs/2"
+        assert paper.spec_reply["obs_layout"] == "guidewire-nav/obs/1"
+        a, _ = ours.reset(seed=4)
+        b, _ = paper.reset(seed=4)
+        for _ in range(150):  # up to the 90-degree side branch
+            a, *_ = ours.step(np.array([0.0], dtype=np.float32))
+            b, *_ = paper.step(np.array([0.0], dtype=np.float32))
+        assert np.array_equal(np.delete(a, 9), np.delete(b, 9))
+        assert a[9] != b[9]
+    finally:
+        ours.close()
+        paper.close()

@@ -54,7 +54,7 @@ def test_exported_actor_matches_sb3_through_policy_run(smoke_run):
     from stable_baselines3 import SAC
 
     actor = json.loads((smoke_run / "actor.json").read_text())
-    assert actor["obs_layout"] == "guidewire-nav/obs/1"
+    assert actor["obs_layout"] == "guidewire-nav/obs/2"
     assert actor["training_settings"]["steps"] >= 200
     model = SAC.load(smoke_run / "best_model.zip", device="cpu")
     rng = np.random.default_rng(3)
@@ -117,4 +117,4 @@ def test_wall_time_budget_stops_training_and_still_exports(tmp_path):
     assert 0 < summary["steps"] < 5000  # a run without the budget would reach 5000 (minutes)
     assert summary["final_eval"] is None and summary["best_success_rate"] is None
     assert not (tmp_path / "evaluations.jsonl").exists()
-    assert json.loads((tmp_path / "actor.json").read_text())["obs_layout"] == "guidewire-nav/obs/1"
+    assert json.loads((tmp_path / "actor.json").read_text())["obs_layout"] == "guidewire-nav/obs/2"

@@ -91,6 +91,33 @@ TEST_CASE("controllers: names and missing policy files", "[runner]") {
                     Catch::Contains("/nonexistent/actor.json"));
 }
 
+// A linear 11 -> 1 actor recorded with `layout`.
+static std::string write_actor(const fs::path& dir, const std::string& layout) {
+  std::string weights = "0";
+  for (int i = 1; i < gw::kObservationSize; ++i) weights += ", 0";
+  const fs::path p = dir / "actor.json";
+  std::ofstream(p) << R"({"format": "guidewire-nav/actor/1", "obs_size": 11, "action_size": 1, "obs_layout": ")" +
+                          layout + R"(", "obs_normalization": null,
+    "layers": [{"shape": [1, 11], "weight": [)" + weights + R"(], "bias": [0.5], "activation": "identity"}],
+    "output": {"squash": "tanh", "low": [-1], "high": [1]}, "training_settings": {}, "git_commit": null})";
+  return p.string();
+}
+
+TEST_CASE("controllers: an actor gets the omega it was trained with; an unknown layout is refused", "[runner]") {
+  const fs::path dir = scratch_dir("layouts");
+  gw::TaskConfig config;
+  REQUIRE(config.omega_plane == gw::OmegaPlane::kApproach);
+  gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/1"))->adapt(config);
+  CHECK(config.omega_plane == gw::OmegaPlane::kCorrectBranch);
+  gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/2"))->adapt(config);
+  CHECK(config.omega_plane == gw::OmegaPlane::kApproach);
+  config.omega_plane = gw::OmegaPlane::kCorrectBranch;
+  gw::make_controller("scripted-omega", "")->adapt(config);  // baselines leave the config alone
+  CHECK(config.omega_plane == gw::OmegaPlane::kCorrectBranch);
+  CHECK_THROWS_WITH(gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/0")),
+                    Catch::Contains("guidewire-nav/obs/0") && Catch::Contains("guidewire-nav/obs/2"));
+}
+
 TEST_CASE("run_batch: threads give the same episodes as one thread, and the summary counts them", "[runner]") {
   const ShortT1 t1;
   const auto requests = gw::plan_episodes(t1.task, 0, "all", 2, 5);

@@ -60,7 +60,8 @@ TEST_CASE("server: spec describes spaces, protocol and layout", "[server]") {
   const json spec = ask(c, R"({"cmd":"spec"})");
   CHECK(spec.at("ok") == true);
   CHECK(spec.at("protocol") == "guidewire-nav/protocol/1");
-  CHECK(spec.at("obs_layout") == "guidewire-nav/obs/1");
+  CHECK(spec.at("obs_layout") == "guidewire-nav/obs/2");  // default omega plane: approach
+  CHECK(spec.at("task").at("omega_plane") == "approach");
   CHECK(spec.at("observation_space").at("shape") == json::array({11}));
   CHECK(spec.at("observation_space").at("low").size() == 11);
   CHECK(spec.at("action_space").at("shape") == json::array({1}));

@@ -50,6 +50,17 @@ inline gw::CenterlineGraph y_graph() {
   return g;
 }
 
+// Root along +y (40 mm); child 1 continues straight on along +y, child 2 leaves at 90 degrees along +x.
+inline gw::CenterlineGraph t_graph() {
+  gw::CenterlineGraph g = y_graph();
+  const Eigen::Vector3d c(0, 40, 0);
+  g.branches[1] = branch(1, 0, segment(c, c + Eigen::Vector3d(0, 40, 0)));
+  g.branches[2] = branch(2, 0, segment(c, c + Eigen::Vector3d(40, 0, 0)));
+  for (gw::Terminal& t : g.targets) t.position = g.branches[t.branch].points.back();
+  gw::number_targets(g);
+  return g;
+}
+
 // Y graph whose right child splits again 30 mm further (out of plane): 3 targets.
 inline gw::CenterlineGraph two_level_tree() {
   gw::CenterlineGraph g = y_graph();

@@ -48,6 +48,7 @@ TEST_CASE("course through a Y bifurcation: directions, goals, control mode", "[t
   std::vector<gw::Polyline> lines;
   for (const auto& b : g.branches) lines.push_back(gw::make_polyline(b.points));
   gw::TaskConfig config;
+  config.omega_plane = gw::OmegaPlane::kCorrectBranch;  // the paper's omega (approach plane: next test)
   // Target numbering: both leaves have the same length, tie broken by x: (-) first.
   const gw::Course c1 = gw::make_course(g, lines, 1, config);
   const gw::Course c2 = gw::make_course(g, lines, 2, config);
@@ -67,6 +68,52 @@ TEST_CASE("course through a Y bifurcation: directions, goals, control mode", "[t
   CHECK((b1.wrong_in_plane[0] - Vector3d(1, 1, 0).normalized()).norm() < 1e-9);
   CHECK((c2.bifurcations[0].correct_direction - Vector3d(1, 1, 0).normalized()).norm() < 1e-9);
   CHECK_THROWS_WITH(gw::make_course(g, lines, 3, config), Catch::Contains("valid targets are 1..2"));
+}
+
+// The steep-branch case: target 2 of the T graph leaves at 90 degrees. In the paper's plane (normal to
+// c = +x) the wrong direction w = +y is the approach axis itself, and the tip's bend, normal to the
+// approach, is orthogonal to it whatever the roll: omega cannot tell a tip aimed into the branch from one
+// aimed away. In the approach plane (normal to p = +y), w - c = (-1, 1, 0) projects to -x: a tip bent
+// towards the side branch reads -1, away from it +1.
+TEST_CASE("omega's approach plane sees a 90-degree side branch; the paper's plane does not", "[task]") {
+  const gw::CenterlineGraph g = gwtest::t_graph();
+  std::vector<gw::Polyline> lines;
+  for (const auto& b : g.branches) lines.push_back(gw::make_polyline(b.points));
+  const int side = g.targets[0].branch == 2 ? 1 : 2;  // target id of the side branch
+  const double rest = 0.2;
+  const Vector3d bend_into(0.2, 0, 0), bend_away(-0.2, 0, 0), bend_across(0, 0, 0.2);
+
+  gw::TaskConfig paper;
+  paper.omega_plane = gw::OmegaPlane::kCorrectBranch;
+  const gw::CourseBifurcation bp = gw::make_course(g, lines, side, paper).bifurcations.at(0);
+  CHECK((bp.correct_direction - Vector3d(1, 0, 0)).norm() < 1e-9);
+  REQUIRE(bp.wrong_in_plane.size() == 1);
+  for (const Vector3d& k : {bend_into, bend_away, bend_across})
+    CHECK(gw::wrong_branch_alignment(k, bp.omega_normal, bp.wrong_in_plane[0], rest) == Approx(0.0).margin(1e-9));
+
+  gw::TaskConfig approach;
+  approach.omega_plane = gw::OmegaPlane::kApproach;
+  const gw::CourseBifurcation ba = gw::make_course(g, lines, side, approach).bifurcations.at(0);
+  CHECK((ba.approach_direction - Vector3d(0, 1, 0)).norm() < 1e-9);
+  CHECK((ba.omega_normal - ba.approach_direction).norm() < 1e-12);
+  CHECK((ba.wrong_in_plane.at(0) - Vector3d(-1, 0, 0)).norm() < 1e-9);
+  CHECK(gw::wrong_branch_alignment(bend_into, ba.omega_normal, ba.wrong_in_plane[0], rest) == Approx(-1.0));
+  CHECK(gw::wrong_branch_alignment(bend_away, ba.omega_normal, ba.wrong_in_plane[0], rest) == Approx(1.0));
+  CHECK(gw::wrong_branch_alignment(bend_across, ba.omega_normal, ba.wrong_in_plane[0], rest) == Approx(0.0).margin(1e-12));
+
+  // Going straight on (target of child 1), the wrong branch is the side one: both planes agree, +x.
+  const int straight = 3 - side;
+  const gw::CourseBifurcation sp = gw::make_course(g, lines, straight, paper).bifurcations.at(0);
+  const gw::CourseBifurcation sa = gw::make_course(g, lines, straight, approach).bifurcations.at(0);
+  CHECK((sp.wrong_in_plane.at(0) - Vector3d(1, 0, 0)).norm() < 1e-9);
+  CHECK((sa.wrong_in_plane.at(0) - Vector3d(1, 0, 0)).norm() < 1e-9);
+
+  // On the symmetric Y both planes give the same reading up to the in-plane tilt of c.
+  const gw::CenterlineGraph y = gwtest::y_graph();
+  std::vector<gw::Polyline> ylines;
+  for (const auto& b : y.branches) ylines.push_back(gw::make_polyline(b.points));
+  const gw::CourseBifurcation ya = gw::make_course(y, ylines, 1, approach).bifurcations.at(0);
+  CHECK((ya.wrong_in_plane.at(0) - Vector3d(1, 0, 0)).norm() < 1e-9);  // from the (-x) child to the (+x) one
 }
 
 TEST_CASE("course through a tree: one intermediate goal per bifurcation", "[task]") {
@@ -124,7 +171,13 @@ TEST_CASE("reward is exactly paper Eq. 3", "[task]") {
 
 TEST_CASE("observation layout is fixed and bounded", "[task]") {
   CHECK(gw::kObservationSize == 11);
-  CHECK(std::string(gw::kObservationLayout) == "guidewire-nav/obs/1");
+  CHECK(std::string(gw::observation_layout(gw::OmegaPlane::kCorrectBranch)) == "guidewire-nav/obs/1");
+  CHECK(std::string(gw::observation_layout(gw::OmegaPlane::kApproach)) == "guidewire-nav/obs/2");
+  CHECK(gw::omega_plane_of_layout("guidewire-nav/obs/1") == gw::OmegaPlane::kCorrectBranch);
+  CHECK(gw::omega_plane_of_layout("guidewire-nav/obs/2") == gw::OmegaPlane::kApproach);
+  CHECK_THROWS_WITH(gw::omega_plane_of_layout("guidewire-nav/obs/9"), Catch::Contains("guidewire-nav/obs/2"));
+  CHECK(gw::parse_omega_plane("approach") == gw::OmegaPlane::kApproach);
+  CHECK_THROWS_WITH(gw::parse_omega_plane("sideways"), Catch::Contains("correct_branch, approach"));
   CHECK(std::string(gw::observation_names()[gw::obs_index::kOmega]) == "omega");
   CHECK(std::string(gw::observation_names()[gw::obs_index::kSpeed]) == "speed");
   gw::TaskConfig config;

@@ -8,8 +8,10 @@ got) and talks to it over a TCP socket with the newline-delimited JSON protocol 
     env = GuidewireEnv(host="10.0.0.5", port=5555)         # remote server
     env = GuidewireEnv(options={"anatomy": "t1_straight_y", "target": 2})
 
-Observation: 11 float32 values, layout "guidewire-nav/obs/1" (engine/task/observation.hpp):
-theta_t (3), theta_{t-n dt} (3), lambda_t, lambda_{t-n dt}, a_t, omega, s.  Action: one float in
+Observation: 11 float32 values (engine/task/observation.hpp): theta_t (3), theta_{t-n dt} (3),
+lambda_t, lambda_{t-n dt}, a_t, omega, s. Layout "guidewire-nav/obs/2" (omega in the approach plane,
+the server's default) or "guidewire-nav/obs/1" (the paper's omega: ``server_args=["--omega-plane",
+"correct_branch"]``); the exported actor records which one it was trained on.  Action: one float in
 [-1, 1], the proximal rotation rate as a fraction of the maximum.  Reward: paper Eq. 3.
 """
 
@@ -32,7 +34,7 @@ import numpy as np
 import guidewire_nav
 
 PROTOCOL = "guidewire-nav/protocol/1"
-OBS_LAYOUT = "guidewire-nav/obs/1"
+OBS_LAYOUTS = ("guidewire-nav/obs/1", "guidewire-nav/obs/2")  # same shape; omega's plane differs
 
 
 class ServerError(RuntimeError):
@@ -120,11 +122,11 @@ class GuidewireEnv(gym.Env):
         except BaseException:
             self.close()
             raise
-        if self.spec_reply.get("protocol") != PROTOCOL or self.spec_reply.get("obs_layout") != OBS_LAYOUT:
+        if self.spec_reply.get("protocol") != PROTOCOL or self.spec_reply.get("obs_layout") not in OBS_LAYOUTS:
             self.close()
             raise RuntimeError(
                 f"server speaks {self.spec_reply.get('protocol')} / {self.spec_reply.get('obs_layout')}, "
-                f"this client {PROTOCOL} / {OBS_LAYOUT}"
+                f"this client {PROTOCOL} / {' or '.join(OBS_LAYOUTS)}"
             )
         obs_space = self.spec_reply["observation_space"]
         self.observation_space = gym.spaces.Box(

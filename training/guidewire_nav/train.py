@@ -33,6 +33,7 @@ import torch
 class Settings:
     out: str = "runs/sac"                  # run folder: logs, checkpoints, actor.json, curve PNG
     anatomies: str = "train"               # anatomy set (or comma-separated names) the servers load
+    omega_plane: str = "approach"          # omega's plane: approach (obs/2) or correct_branch (paper, obs/1)
     total_steps: int = 150_000             # environment steps over all workers
     envs: int = 2                          # parallel servers (SubprocVecEnv); 1 = in-process DummyVecEnv
     seed: int = 0
@@ -91,7 +92,7 @@ def make_env_fn(s: Settings, rank: int, eval_env: bool = False):
             host, port = s.servers.split(",")[rank % len(s.servers.split(","))].rsplit(":", 1)
             env = GuidewireEnv(host=host, port=int(port))
         else:
-            env = GuidewireEnv(anatomies=s.anatomies)
+            env = GuidewireEnv(anatomies=s.anatomies, server_args=["--omega-plane", s.omega_plane])
         env.reset(seed=s.seed + 1000 * rank + (10**6 if eval_env else 0))
         return env  # episode statistics come from VecMonitor over all workers
 

@@ -122,7 +122,9 @@ def evaluate(model, env, episodes: int, seed: int) -> dict:
             "mean_return": float(np.mean(returns)), "outcomes": outcomes}
 
 
-def plot_curve(out: Path, monitor_rows: list[dict], evals: list[dict]) -> None:
+def plot_curve(out: Path, monitor_rows: list[dict], evals: list[dict], eval_label: str = "deterministic evaluation") -> None:
+    """Left: episode returns. Right: success of the training episodes (stochastic policy) per 10k-step
+    window, and the evaluations (deterministic actor) when there are any."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -139,17 +141,37 @@ def plot_curve(out: Path, monitor_rows: list[dict], evals: list[dict]) -> None:
         ax1.set_xlabel("environment steps")
         ax1.set_ylabel("return")
         ax1.legend()
+        if all("success" in r for r in monitor_rows):
+            bins = (steps - 1) // 10_000
+            centres, rates = [], []
+            for b in np.unique(bins):
+                chosen = bins == b
+                centres.append(10_000 * b + 5_000)
+                rates.append(100 * np.mean([monitor_rows[i]["success"] for i in np.flatnonzero(chosen)]))
+            ax2.step(centres, rates, where="mid", color="tab:blue", alpha=0.6,
+                     label="training episodes (stochastic), per 10k steps")
     if evals:
-        ax2.plot([e["step"] for e in evals], [100 * e["success_rate"] for e in evals], "o-")
+        ax2.plot([e["step"] for e in evals], [100 * e["success_rate"] for e in evals], "o-", color="tab:orange",
+                 label=eval_label)
     ax2.axhline(95, color="gray", ls="--", label="paper: 95%")
     ax2.set_ylim(0, 102)
     ax2.set_xlabel("environment steps")
     ax2.set_ylabel("success rate on training anatomies [%]")
-    ax2.legend()
+    ax2.legend(fontsize=8, loc="lower right")
     fig.suptitle("SAC on the 4 training anatomies")
     fig.tight_layout()
     fig.savefig(out, dpi=120)
     plt.close(fig)
+
+
+def read_monitor(path: Path) -> list[dict]:
+    """Episodes of SB3's monitor CSV (after its JSON header line): return, length and success."""
+    if not path.exists():
+        return []
+    with open(path) as f:
+        next(f)
+        return [{"r": float(r["r"]), "l": int(r["l"]), "success": r.get("success") in ("True", "1", "1.0")}
+                for r in csv.DictReader(f)]
 
 
 def main(argv=None) -> int:
@@ -248,13 +270,7 @@ def main(argv=None) -> int:
     (out / "summary.json").write_text(json.dumps(summary, indent=2))
 
     # --- training curve
-    rows = []
-    monitor_csv = out / "monitor.monitor.csv"
-    if monitor_csv.exists():
-        with open(monitor_csv) as f:
-            next(f)  # the JSON header line of SB3's monitor file
-            rows = [{"r": float(r["r"]), "l": int(r["l"])} for r in csv.DictReader(f)]
-    plot_curve(out / "training_curve.png", rows, evals)
+    plot_curve(out / "training_curve.png", read_monitor(out / "monitor.monitor.csv"), evals)
 
     vec_env.close()
     eval_env.close()

@@ -37,9 +37,9 @@ void observation_bounds(const TaskConfig& config, Observation& low, Observation&
   high[obs_index::kSpeed] = config.max_abs_speed_ratio;
 }
 
-double wrong_branch_alignment(const Eigen::Vector3d& curvature, const Eigen::Vector3d& correct_direction,
+double wrong_branch_alignment(const Eigen::Vector3d& curvature, const Eigen::Vector3d& plane_normal,
                               const Eigen::Vector3d& wrong_in_plane, double rest_curvature) {
-  const Eigen::Vector3d kp = curvature - curvature.dot(correct_direction) * correct_direction;
+  const Eigen::Vector3d kp = curvature - curvature.dot(plane_normal) * plane_normal;
   const double scale = std::max(kp.norm(), 0.5 * rest_curvature);
   if (!(scale > 0.0)) return 0.0;
   return std::clamp(kp.dot(wrong_in_plane) / scale, -1.0, 1.0);

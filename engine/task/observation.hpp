@@ -49,9 +49,10 @@ const std::array<const char*, kObservationSize>& observation_names();
 // Box bounds of every entry (clipping limits from `config`).
 void observation_bounds(const TaskConfig& config, Observation& low, Observation& high);
 
-// omega for one wrong branch: `curvature` (1/mm, pointing where the tip bends), `correct_direction`
-// (unit c), `wrong_in_plane` (unit w_p, or zero), `rest_curvature` (1/mm, the tip's). In [-1, 1].
-double wrong_branch_alignment(const Eigen::Vector3d& curvature, const Eigen::Vector3d& correct_direction,
+// omega for one wrong branch: `curvature` (1/mm, pointing where the tip bends), `plane_normal`
+// (unit normal of omega's plane: CourseBifurcation::omega_normal), `wrong_in_plane` (unit w_p, or zero),
+// `rest_curvature` (1/mm, the tip's). In [-1, 1].
+double wrong_branch_alignment(const Eigen::Vector3d& curvature, const Eigen::Vector3d& plane_normal,
                               const Eigen::Vector3d& wrong_in_plane, double rest_curvature);
 
 // Mean curvature vector between two unit tangents of the wire, `tip_tangent` distal and `back_tangent`

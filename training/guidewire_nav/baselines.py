@@ -17,7 +17,7 @@ import numpy as np
 
 from guidewire_nav.env import GuidewireEnv
 
-OMEGA = 9  # observation index, layout guidewire-nav/obs/1
+OMEGA = 9  # observation index of omega (both layouts, obs/1 and obs/2)
 
 
 class PushOnly:

@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-OMEGA = 9  # observation index (engine/task/observation.hpp)
+from guidewire_nav.baselines import OMEGA  # observation index of omega
 
 SCHEDULES = {
     "aim-0.95": lambda obs, k: 1.0 if obs[OMEGA] > -0.95 else 0.0,
@@ -40,15 +40,15 @@ SCHEDULES = {
 }
 
 
-def run_episode(env, anatomy: str, target: int, seed: int, schedule) -> str:
-    """One seeded episode under `schedule`; returns its outcome name."""
+def run_episode(env, anatomy: str, target: int, seed: int, schedule) -> bool:
+    """One seeded episode under `schedule`; whether it reached the target."""
     obs, _ = env.reset(seed=seed, options={"anatomy": anatomy, "target": target})
     k, done, info = 0, False, {}
     while not done:
         obs, _, terminated, truncated, info = env.step(np.array([schedule(obs, k)], dtype=np.float32))
         k += 1
         done = terminated or truncated
-    return next((name for name in ("success", "wrong_branch", "stuck", "step_limit") if info.get(name)), "other")
+    return bool(info["success"])
 
 
 def probe(anatomy: str, target: int, seeds: int, schedules: list[str], anatomies: str) -> dict:
@@ -58,8 +58,7 @@ def probe(anatomy: str, target: int, seeds: int, schedules: list[str], anatomies
     try:
         successes = {}
         for name in schedules:
-            outcomes = [run_episode(env, anatomy, target, seed, SCHEDULES[name]) for seed in range(seeds)]
-            successes[name] = outcomes.count("success")
+            successes[name] = sum(run_episode(env, anatomy, target, seed, SCHEDULES[name]) for seed in range(seeds))
     finally:
         env.close()
     return {"anatomy": anatomy, "target": target, "seeds": seeds, "successes": successes,

@@ -141,15 +141,12 @@ def plot_curve(out: Path, monitor_rows: list[dict], evals: list[dict], eval_labe
         ax1.set_xlabel("environment steps")
         ax1.set_ylabel("return")
         ax1.legend()
-        if all("success" in r for r in monitor_rows):
-            bins = (steps - 1) // 10_000
-            centres, rates = [], []
-            for b in np.unique(bins):
-                chosen = bins == b
-                centres.append(10_000 * b + 5_000)
-                rates.append(100 * np.mean([monitor_rows[i]["success"] for i in np.flatnonzero(chosen)]))
-            ax2.step(centres, rates, where="mid", color="tab:blue", alpha=0.6,
-                     label="training episodes (stochastic), per 10k steps")
+        success = np.array([r["success"] for r in monitor_rows], dtype=float)
+        bins = (steps - 1) // 10_000
+        windows = np.unique(bins)
+        rates = [100 * success[bins == b].mean() for b in windows]
+        ax2.step(10_000 * windows + 5_000, rates, where="mid", color="tab:blue", alpha=0.6,
+                 label="training episodes (stochastic), per 10k steps")
     if evals:
         ax2.plot([e["step"] for e in evals], [100 * e["success_rate"] for e in evals], "o-", color="tab:orange",
                  label=eval_label)

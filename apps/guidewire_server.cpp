@@ -33,6 +33,12 @@ int main(int argc, char** argv) {
   app.add_option("--omega-plane", omega_plane,
                  "omega's plane: approach (obs/2) or correct_branch (the paper's, obs/1)")
       ->capture_default_str();
+  app.add_option("--reward-omega-centre", config.reward.omega_centre,
+                 "centre of the reward's omega sigmoid (paper Eq. 3: 0.1)")
+      ->capture_default_str();
+  app.add_option("--reward-omega-slope", config.reward.omega_slope,
+                 "slope of the reward's omega sigmoid (paper Eq. 3: 5)")
+      ->capture_default_str();
   app.add_option("--step-time-limit", options.session.step_time_limit_s,
                  "seconds one env step may run before it is cut off with an error (0 = none)")
       ->capture_default_str();

@@ -82,6 +82,7 @@ std::string spec_json(const NavigationTask& task) {
               {"max_rotation_rad_per_s", c.max_rotation_rad_per_s},
               {"control_mode", control_mode_name(c.control_mode)},
               {"omega_plane", omega_plane_name(c.omega_plane)},
+              {"reward", {{"omega_centre", c.reward.omega_centre}, {"omega_slope", c.reward.omega_slope}}},
               {"control_radius_mm", c.control_radius_mm},
               {"success_radius_mm", c.success_radius_mm}}}};
   return j.dump();

@@ -220,7 +220,7 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, double act
   observe(task, s, false);
   s.obs[obs_index::kAction] = applied;
   out.obs = s.obs;
-  out.reward = navigation_reward(s.obs[obs_index::kOmega], s.obs[obs_index::kLambda], applied);
+  out.reward = navigation_reward(s.obs[obs_index::kOmega], s.obs[obs_index::kLambda], applied, c.reward);
 
   if (s.progress_mm > s.best_progress_mm + c.stuck_progress_mm) {
     s.best_progress_mm = s.progress_mm;

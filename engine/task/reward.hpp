@@ -1,10 +1,19 @@
 #pragma once
-// The reward of paper Eq. 3.
+// The reward of paper Eq. 3, with the orientation sigmoid's centre and slope as parameters.
 
 namespace gw {
 
-// r = 2 / (1 + exp(5 (omega - 0.1))) - 1  +  0.5 (1 - lambda_t / lambda_0)  -  0.2 |a_t|
+// r = 2 / (1 + exp(slope (omega - centre))) - 1  +  0.5 (1 - lambda_t / lambda_0)  -  0.2 |a_t|
+// The paper's sigmoid is centre 0.1, slope 5 (the defaults). It is flat below omega ~ -0.5 (0.955 at
+// -0.65, 0.992 at -1) while a rotation step costs 0.2 |a|, so it barely pays for the fine aim
+// (omega near -1) that decides shallow branches; a shifted, steeper sigmoid (e.g. centre -0.5, slope 8)
+// keeps paying down to omega ~ -0.9. The shape is a task setting so a policy's training records it.
+struct RewardShape {
+  double omega_centre = 0.1;
+  double omega_slope = 5.0;
+};
+
 // `lambda_ratio` is lambda_t / lambda_0, `action` the applied rotation action in [-1, 1].
-double navigation_reward(double omega, double lambda_ratio, double action);
+double navigation_reward(double omega, double lambda_ratio, double action, const RewardShape& shape = {});
 
 }  // namespace gw

@@ -23,6 +23,9 @@ void check_task_config(const TaskConfig& c) {
   require(c.branch_direction_mm > 0, "branch_direction_mm", "> 0");
   require(c.max_abs_speed_ratio > 0, "max_abs_speed_ratio", "> 0");
   require(c.max_lambda_ratio >= 1, "max_lambda_ratio", ">= 1");
+  require(std::isfinite(c.reward.omega_centre) && std::abs(c.reward.omega_centre) <= 1, "reward.omega_centre",
+          "in [-1, 1]");
+  require(c.reward.omega_slope > 0 && c.reward.omega_slope <= 50, "reward.omega_slope", "in (0, 50]");
   require(c.success_radius_mm > 0, "success_radius_mm", "> 0");
   require(c.wrong_branch_depth_mm >= 0, "wrong_branch_depth_mm", ">= 0");
   require(c.control_radius_mm > 0, "control_radius_mm", "> 0");

@@ -3,6 +3,8 @@
 // its value. The task model (NavigationTask) holds one; episodes never change it.
 #include <string>
 
+#include "engine/task/reward.hpp"
+
 namespace gw {
 
 // When the policy's action is applied (design.md, "Trees").
@@ -44,6 +46,8 @@ struct TaskConfig {
   OmegaPlane omega_plane = OmegaPlane::kApproach;  // kCorrectBranch = the paper's definition (obs/1)
   double max_abs_speed_ratio = 5.0;      // s = v.c / push is clipped to +-this (bounded obs space)
   double max_lambda_ratio = 4.0;         // lambda_t / lambda_0 is clipped to [0, this]
+  // --- Reward (reward.hpp) ---
+  RewardShape reward;                    // orientation sigmoid; default = paper Eq. 3
   // --- Episode end ---
   double success_radius_mm = 4.0;        // tip within this distance of the target = success
   double wrong_branch_depth_mm = 4.0;    // failure once the tip is this far along a wrong child and

@@ -137,3 +137,26 @@ def test_omega_plane_is_chosen_at_the_server_and_reported(server_bin):
     finally:
         ours.close()
         paper.close()
+
+
+def test_reward_shape_is_chosen_at_the_server_and_changes_only_the_reward(server_bin):
+    # Same seed, same actions: the observations agree, the rewards follow each server's sigmoid.
+    paper = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1})
+    steep = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1},
+                         server_args=["--reward-omega-centre", "-0.5", "--reward-omega-slope", "8"])
+    try:
+        assert paper.spec_reply["task"]["reward"] == {"omega_centre": 0.1, "omega_slope": 5.0}
+        assert steep.spec_reply["task"]["reward"] == {"omega_centre": -0.5, "omega_slope": 8.0}
+        paper.reset(seed=2)
+        steep.reset(seed=2)
+        for _ in range(20):
+            a, ra, *_ = paper.step(np.array([0.3], dtype=np.float32))
+            b, rb, *_ = steep.step(np.array([0.3], dtype=np.float32))
+            assert np.array_equal(a, b)
+            omega, lam, act = float(a[9]), float(a[6]), float(a[8])
+            rest = 0.5 * (1 - lam) - 0.2 * abs(act)
+            assert ra == pytest.approx(2 / (1 + np.exp(5 * (omega - 0.1))) - 1 + rest, abs=1e-4)
+            assert rb == pytest.approx(2 / (1 + np.exp(8 * (omega + 0.5))) - 1 + rest, abs=1e-4)
+    finally:
+        paper.close()
+        steep.close()

@@ -62,6 +62,7 @@ TEST_CASE("server: spec describes spaces, protocol and layout", "[server]") {
   CHECK(spec.at("protocol") == "guidewire-nav/protocol/1");
   CHECK(spec.at("obs_layout") == "guidewire-nav/obs/2");  // default omega plane: approach
   CHECK(spec.at("task").at("omega_plane") == "approach");
+  CHECK(spec.at("task").at("reward").at("omega_centre") == 0.1);  // paper Eq. 3 unless told otherwise
   CHECK(spec.at("observation_space").at("shape") == json::array({11}));
   CHECK(spec.at("observation_space").at("low").size() == 11);
   CHECK(spec.at("action_space").at("shape") == json::array({1}));

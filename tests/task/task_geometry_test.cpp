@@ -167,6 +167,24 @@ TEST_CASE("reward is exactly paper Eq. 3", "[task]") {
       for (double a : {-1.0, -0.2, 0.0, 0.5, 1.0}) CHECK(gw::navigation_reward(w, l, a) == eq3(w, l, a));
   CHECK(gw::navigation_reward(0.1, 1.0, 0.0) == Approx(0.0).margin(1e-15));  // sigmoid centre
   CHECK(gw::navigation_reward(-1.0, 0.0, 0.0) == Approx(2.0 / (1.0 + std::exp(-5.5)) - 0.5));
+  CHECK(gw::TaskConfig{}.reward.omega_centre == 0.1);  // the task's default is the paper's
+  CHECK(gw::TaskConfig{}.reward.omega_slope == 5.0);
+}
+
+TEST_CASE("reward sigmoid can be shifted and steepened", "[task]") {
+  const gw::RewardShape steep{-0.5, 8.0};
+  CHECK(gw::navigation_reward(-0.5, 1.0, 0.0, steep) == Approx(0.0).margin(1e-15));  // the new centre
+  // The point of the deviation: the paper's sigmoid pays little for aiming from omega -0.65 to -0.95,
+  // less than two full rotation steps cost (0.4); the steep one pays more than that.
+  const double paper_gain = gw::navigation_reward(-0.95, 1.0, 0.0) - gw::navigation_reward(-0.65, 1.0, 0.0);
+  const double steep_gain =
+      gw::navigation_reward(-0.95, 1.0, 0.0, steep) - gw::navigation_reward(-0.65, 1.0, 0.0, steep);
+  CHECK(paper_gain < 0.05);
+  CHECK(steep_gain > 0.4);
+  CHECK(gw::navigation_reward(1.0, 1.0, 0.0, steep) == Approx(2.0 / (1.0 + std::exp(12.0)) - 1.0));
+  gw::TaskConfig config;
+  config.reward.omega_slope = 0.0;
+  CHECK_THROWS_WITH(gw::check_task_config(config), Catch::Contains("reward.omega_slope"));
 }
 
 TEST_CASE("observation layout is fixed and bounded", "[task]") {

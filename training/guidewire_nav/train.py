@@ -34,6 +34,8 @@ class Settings:
     out: str = "runs/sac"                  # run folder: logs, checkpoints, actor.json, curve PNG
     anatomies: str = "train"               # anatomy set (or comma-separated names) the servers load
     omega_plane: str = "approach"          # omega's plane: approach (obs/2) or correct_branch (paper, obs/1)
+    reward_omega_centre: float = 0.1       # reward sigmoid 2/(1+exp(slope(omega-centre)))-1; paper Eq. 3 is
+    reward_omega_slope: float = 5.0        #   centre 0.1, slope 5 (engine/task/reward.hpp says why to change)
     total_steps: int = 150_000             # environment steps over all workers
     envs: int = 2                          # parallel servers (SubprocVecEnv); 1 = in-process DummyVecEnv
     seed: int = 0
@@ -82,6 +84,11 @@ def git_commit() -> str:
         return "unknown"
 
 
+def server_args(s: Settings) -> list[str]:
+    return ["--omega-plane", s.omega_plane, "--reward-omega-centre", repr(s.reward_omega_centre),
+            "--reward-omega-slope", repr(s.reward_omega_slope)]
+
+
 def make_env_fn(s: Settings, rank: int, eval_env: bool = False):
     """A thunk for (Subproc|Dummy)VecEnv: each worker starts (or connects to) its own server."""
 
@@ -92,7 +99,7 @@ def make_env_fn(s: Settings, rank: int, eval_env: bool = False):
             host, port = s.servers.split(",")[rank % len(s.servers.split(","))].rsplit(":", 1)
             env = GuidewireEnv(host=host, port=int(port))
         else:
-            env = GuidewireEnv(anatomies=s.anatomies, server_args=["--omega-plane", s.omega_plane])
+            env = GuidewireEnv(anatomies=s.anatomies, server_args=server_args(s))
         env.reset(seed=s.seed + 1000 * rank + (10**6 if eval_env else 0))
         return env  # episode statistics come from VecMonitor over all workers
 

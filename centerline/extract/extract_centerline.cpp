@@ -98,7 +98,7 @@ CenterlineGraph extract_centerline(const TriangleMesh& mesh, const CenterlineOpt
   for (const auto& c : tree.chains)
     refined.push_back(refine_branch(c.points, degree[c.a] == 1, degree[c.b] == 1, wall, refinement));
   std::vector<Eigen::Vector3d> nodes = tree.nodes;
-  recentre_junctions(tree, nodes, refined, opt.spacing);
+  recentre_junctions(tree, nodes, refined, wall, opt.spacing);
 
   // 5. Inlet: the terminal nearest the given point, else the one on the widest branch
   // (ties: lowest x, y, z, so the choice is deterministic).

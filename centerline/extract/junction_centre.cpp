@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include "centerline/extract/side_branch_axis.hpp"
+
 namespace gw {
 namespace {
 
@@ -46,7 +48,8 @@ double clean_start(const Arm& a, const std::vector<double>& s, double r) {
 }  // namespace
 
 void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& nodes,
-                        std::vector<RefinedBranch>& branches, double spacing, double max_shift) {
+                        std::vector<RefinedBranch>& branches, const VesselWall& wall, double spacing,
+                        double max_shift) {
   const std::vector<int> degree = tree.degree();
   for (size_t v = 0; v < tree.nodes.size(); ++v) {
     if (degree[v] < 3) continue;
@@ -62,6 +65,7 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
     Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
     std::vector<double> cut(arms.size(), 0.0);
     std::vector<Eigen::Vector3d> start(arms.size()), dir(arms.size()), mid(arms.size());
+    std::vector<double> radius(arms.size(), 0.0);
     double widest = 0.0;
     bool ok = true;
     for (size_t k = 0; k < arms.size() && ok; ++k) {
@@ -73,6 +77,7 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
       std::sort(near.begin(), near.end());
       const double r = near[near.size() / 2];
       widest = std::max(widest, r);
+      radius[k] = r;
       double s0 = clean_start(arms[k], s, r), s1 = s0 + 4.0 * r;
       if (s0 < 0) s0 = std::min(1.5 * r, 0.3 * s.back()), s1 = std::min(3.5 * r, 0.6 * s.back());
       s1 = std::min(s1, 0.8 * s.back());
@@ -111,6 +116,8 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
     // the side branch's axis. (The plain least-squares point sits off a curved axis by
     // its sagitta, and at shallow side-branch angles that error is multiplied along it.)
     std::vector<std::vector<Eigen::Vector3d>> lead(arms.size());  // centre -> window, per arm
+    std::vector<Eigen::Vector3d> side_centres;
+    size_t traced_side = arms.size();
     if (arms.size() == 3) {
       size_t bi = 0, bj = 1;
       for (size_t i = 0; i < 3; ++i)
@@ -125,22 +132,53 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
           const double u2 = u * u, u3 = u2 * u;
           return ((2 * u3 - 3 * u2 + 1) * P0 + (u3 - 2 * u2 + u) * T0 + (-2 * u3 + 3 * u2) * P1 + (u3 - u2) * T1).eval();
         };
+        // The side branch's axis near the junction, from its own wall inside the merged lumen
+        // (side_branch_axis.hpp); the clean-tube line stays when that fails.
+        // The parent's axis: the Hermite curve between the windows, the windows' lines beyond.
+        auto parent_point = [&](double u) {
+          return u < 0 ? (P0 - dir[bi] * (u * L)).eval() : u > 1 ? (P1 + dir[bj] * ((u - 1) * L)).eval() : hermite(u);
+        };
+        std::vector<Eigen::Vector3d> parent_axis;
+        for (int i = -100; i <= 300; ++i) parent_axis.push_back(parent_point(i / 200.0));
+        auto parent_distance = [&](const Eigen::Vector3d& q) {
+          double best = std::numeric_limits<double>::infinity();
+          for (size_t i = 0; i + 1 < parent_axis.size(); ++i) {
+            const Eigen::Vector3d a = parent_axis[i], ab = parent_axis[i + 1] - a;
+            const double t = std::clamp((q - a).dot(ab) / std::max(ab.squaredNorm(), 1e-12), 0.0, 1.0);
+            best = std::min(best, (q - a - t * ab).norm());
+          }
+          return best;
+        };
+        const SideBranchAxis traced = trace_side_branch_axis(wall, mid[side], dir[side], radius[side], parent_distance,
+                                                             0.5 * (radius[bi] + radius[bj]), spacing);
+        if (traced.ok) {
+          mid[side] = traced.point;
+          dir[side] = traced.direction;
+          side_centres = traced.centres;
+          traced_side = side;
+        }
         auto gap = [&](double u) {
-          const Eigen::Vector3d q = hermite(u) - mid[side];
+          const Eigen::Vector3d q = parent_point(u) - mid[side];
           return (q - q.dot(dir[side]) * dir[side]).norm();
         };
+        // The centre may lie a little inside either parent window (a shallow branch's merged lumen
+        // can push the proximal window's clean start right up to the true junction).
         double best = 0.0, best_gap = gap(0.0);
-        for (int i = 1; i <= 200; ++i)
+        for (int i = -100; i <= 300; ++i)
           if (gap(i / 200.0) < best_gap) best_gap = gap(i / 200.0), best = i / 200.0;
         for (double h = 1.0 / 200; h > 1e-6; h *= 0.5)
           for (double u : {best - h, best + h})
-            if (u >= 0 && u <= 1 && gap(u) < best_gap) best_gap = gap(u), best = u;
-        if (best > 0.0 && best < 1.0 && best_gap < 1.5 * widest) {
-          centre = hermite(best);
+            if (u >= -0.5 && u <= 1.5 && gap(u) < best_gap) best_gap = gap(u), best = u;
+        if (best > -0.5 && best < 1.5 && best_gap < 1.5 * widest) {
+          centre = parent_point(best);
           placed = true;
           const int n = std::max(2, static_cast<int>(std::round(L / spacing)));
-          for (int i = static_cast<int>(std::floor(best * n)); i > 0; --i) lead[bi].push_back(hermite(double(i) / n));
-          for (int i = static_cast<int>(std::ceil(best * n)); i < n; ++i) lead[bj].push_back(hermite(double(i) / n));
+          // Lead-ins along the parent axis to each window start (excluded), skipping the part of a
+          // window the centre fell into: that arm is then cut past the centre.
+          for (int i = static_cast<int>(std::floor(best * n)); i > 0; --i) lead[bi].push_back(parent_point(double(i) / n));
+          for (int i = static_cast<int>(std::ceil(best * n)); i < n; ++i) lead[bj].push_back(parent_point(double(i) / n));
+          if (best > 1.0) cut[bj] += (best - 1.0) * L + spacing;
+          if (best < 0.0) cut[bi] += -best * L + spacing;
           // lead[] excludes the centre and the window start themselves.
           if (!lead[bi].empty() && (lead[bi].front() - centre).norm() < 0.25 * spacing) lead[bi].erase(lead[bi].begin());
           if (!lead[bj].empty() && (lead[bj].front() - centre).norm() < 0.25 * spacing) lead[bj].erase(lead[bj].begin());
@@ -149,6 +187,20 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
     }
     if (!placed || !centre.allFinite() || (centre - nodes[v]).norm() > max_shift * widest) continue;
     nodes[v] = centre;
+    // A traced side branch runs from the centre through its recovered centres up to its old points.
+    if (traced_side < arms.size()) {
+      const Arm& a = arms[traced_side];
+      size_t first = 0;
+      for (double s = 0.0; first + 1 < a.points.size() && s < cut[traced_side]; ++first)
+        s += (a.points[first + 1] - a.points[first]).norm();
+      const Eigen::Vector3d d = dir[traced_side];
+      const double end = (a.points[first] - centre).dot(d);
+      for (const auto& q : side_centres) {
+        const double along = (q - centre).dot(d);
+        const double last = lead[traced_side].empty() ? 0.0 : (lead[traced_side].back() - centre).dot(d);
+        if (along > last + 0.5 * spacing && along < end - 0.5 * spacing) lead[traced_side].push_back(q);
+      }
+    }
     // Re-attach: drop each arm's first `cut` of length, run straight from the centre.
     for (size_t k = 0; k < arms.size(); ++k) {
       Arm& a = arms[k];

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "centerline/extract/side_branch_axis.hpp"
+#include "centerline/extract/merged_lumen_axis.hpp"
 
 namespace gw {
 namespace {
@@ -116,8 +116,11 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
     // the side branch's axis. (The plain least-squares point sits off a curved axis by
     // its sagitta, and at shallow side-branch angles that error is multiplied along it.)
     std::vector<std::vector<Eigen::Vector3d>> lead(arms.size());  // centre -> window, per arm
-    std::vector<Eigen::Vector3d> side_centres;
-    size_t traced_side = arms.size();
+    std::vector<std::vector<double>> lead_radii(arms.size());     // measured radii of a traced lead
+    std::vector<std::vector<Eigen::Vector3d>> traced_centres(arms.size());  // merged_lumen_axis.hpp
+    std::vector<std::vector<double>> traced_radii(arms.size());
+    bool side_case = false;
+    size_t side_arm = arms.size();
     if (arms.size() == 3) {
       size_t bi = 0, bj = 1;
       for (size_t i = 0; i < 3; ++i)
@@ -132,8 +135,6 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
           const double u2 = u * u, u3 = u2 * u;
           return ((2 * u3 - 3 * u2 + 1) * P0 + (u3 - 2 * u2 + u) * T0 + (-2 * u3 + 3 * u2) * P1 + (u3 - u2) * T1).eval();
         };
-        // The side branch's axis near the junction, from its own wall inside the merged lumen
-        // (side_branch_axis.hpp); the clean-tube line stays when that fails.
         // The parent's axis: the Hermite curve between the windows, the windows' lines beyond.
         auto parent_point = [&](double u) {
           return u < 0 ? (P0 - dir[bi] * (u * L)).eval() : u > 1 ? (P1 + dir[bj] * ((u - 1) * L)).eval() : hermite(u);
@@ -149,14 +150,21 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
           }
           return best;
         };
-        const SideBranchAxis traced = trace_side_branch_axis(wall, mid[side], dir[side], radius[side], parent_distance,
-                                                             0.5 * (radius[bi] + radius[bj]), spacing);
+        // The side branch's axis near the junction, from its own wall inside the merged lumen
+        // (merged_lumen_axis.hpp); the clean-tube line stays when that fails.
+        const double parent_r = 0.5 * (radius[bi] + radius[bj]);
+        const MergedLumenQuery query{
+            [&](const Eigen::Vector3d& q) { return parent_distance(q) > parent_r + 0.5 * radius[side]; },
+            [&](const Eigen::Vector3d& q) { return parent_distance(q) < 0.25 * parent_r; }};
+        const MergedLumenAxis traced = trace_merged_lumen_axis(wall, mid[side], dir[side], radius[side], query, spacing);
         if (traced.ok) {
           mid[side] = traced.point;
           dir[side] = traced.direction;
-          side_centres = traced.centres;
-          traced_side = side;
+          traced_centres[side] = traced.centres;
+          traced_radii[side] = traced.radii;
         }
+        side_case = true;
+        side_arm = side;
         auto gap = [&](double u) {
           const Eigen::Vector3d q = parent_point(u) - mid[side];
           return (q - q.dot(dir[side]) * dir[side]).norm();
@@ -187,19 +195,56 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
     }
     if (!placed || !centre.allFinite() || (centre - nodes[v]).norm() > max_shift * widest) continue;
     nodes[v] = centre;
-    // A traced side branch runs from the centre through its recovered centres up to its old points.
-    if (traced_side < arms.size()) {
-      const Arm& a = arms[traced_side];
-      size_t first = 0;
-      for (double s = 0.0; first + 1 < a.points.size() && s < cut[traced_side]; ++first)
-        s += (a.points[first + 1] - a.points[first]).norm();
-      const Eigen::Vector3d d = dir[traced_side];
-      const double end = (a.points[first] - centre).dot(d);
-      for (const auto& q : side_centres) {
-        const double along = (q - centre).dot(d);
-        const double last = lead[traced_side].empty() ? 0.0 : (lead[traced_side].back() - centre).dot(d);
-        if (along > last + 0.5 * spacing && along < end - 0.5 * spacing) lead[traced_side].push_back(q);
+    // Every other arm is traced back to the centre through the merged lumen too: its own wall is
+    // what lies outside the other arms' tubes (taken as half-lines from the centre). The two arms
+    // of a vessel that goes on past a side branch are one tube: they do not mask each other.
+    for (size_t k = 0; k < arms.size(); ++k) {
+      if (!traced_centres[k].empty()) continue;
+      std::vector<size_t> others;
+      for (size_t j = 0; j < arms.size(); ++j)
+        if (j != k && !(side_case && k != side_arm && j != side_arm)) others.push_back(j);
+      const MergedLumenQuery query{
+          [&](const Eigen::Vector3d& q) {
+            for (size_t j : others) {
+              const double t = std::max(0.0, (q - centre).dot(dir[j]));
+              if ((q - centre - t * dir[j]).norm() <= radius[j] + 0.5 * std::min(radius[j], radius[k])) return false;
+            }
+            return true;
+          },
+          [&](const Eigen::Vector3d& q) { return (q - centre).dot(dir[k]) < 0.5 * radius[k]; }};
+      const MergedLumenAxis traced = trace_merged_lumen_axis(wall, mid[k], dir[k], radius[k], query, spacing);
+      if (traced.ok) traced_centres[k] = traced.centres, traced_radii[k] = traced.radii;
+    }
+    // A traced arm runs from the centre (straight) to its nearest recovered centre, through the
+    // recovered centres, then on along its old points beyond them.
+    for (size_t k = 0; k < arms.size(); ++k) {
+      if (traced_centres[k].empty()) continue;
+      const Arm& a = arms[k];
+      const std::vector<Eigen::Vector3d>& found = traced_centres[k];
+      const Eigen::Vector3d d = dir[k];
+      auto along = [&](const Eigen::Vector3d& q) { return (q - centre).dot(d); };
+      std::vector<Eigen::Vector3d> run;
+      std::vector<double> run_radii;
+      const int steps = std::max(1, static_cast<int>(std::round(along(found.front()) / spacing)));
+      for (int j = 1; j < steps; ++j) {
+        run.push_back(centre + (found.front() - centre) * (double(j) / steps));
+        run_radii.push_back(traced_radii[k].front());
       }
+      for (size_t i = 0; i < found.size(); ++i)
+        if (along(found[i]) > (run.empty() ? 0.0 : along(run.back())) + 0.5 * spacing) {
+          run.push_back(found[i]);
+          run_radii.push_back(traced_radii[k][i]);
+        }
+      if (run.empty()) continue;
+      size_t first = 0;
+      double s = 0.0;
+      while (first + 1 < a.points.size() && along(a.points[first]) < along(run.back()) + 0.5 * spacing) {
+        s += (a.points[first + 1] - a.points[first]).norm();
+        ++first;
+      }
+      cut[k] = s;
+      lead[k] = std::move(run);
+      lead_radii[k] = std::move(run_radii);
     }
     // Re-attach: drop each arm's first `cut` of length, run straight from the centre.
     for (size_t k = 0; k < arms.size(); ++k) {
@@ -211,13 +256,13 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
         ++first;
       }
       std::vector<Eigen::Vector3d> pts{centre};
-      std::vector<double> rad{a.radii[first]};
+      std::vector<double> rad{lead_radii[k].empty() ? a.radii[first] : lead_radii[k].front()};
       std::vector<double> elong{std::numeric_limits<double>::infinity()};
       const Eigen::Vector3d target = a.points[first];
       if (!lead[k].empty()) {
-        for (const auto& q : lead[k]) {
-          pts.push_back(q);
-          rad.push_back(a.radii[first]);
+        for (size_t i = 0; i < lead[k].size(); ++i) {
+          pts.push_back(lead[k][i]);
+          rad.push_back(lead_radii[k].empty() ? a.radii[first] : lead_radii[k][i]);
           elong.push_back(std::numeric_limits<double>::infinity());
         }
       } else {

@@ -18,7 +18,7 @@ namespace gw {
 // the centre at `spacing`. `nodes` (junction positions, indexed like tree.nodes) and
 // `branches` (indexed like tree.chains, running from chain.a to chain.b) are updated.
 // A side branch off a vessel that goes on is traced back into the lumen it shares with that
-// vessel (side_branch_axis.hpp) before its axis is intersected with the vessel's.
+// vessel (merged_lumen_axis.hpp) before its axis is intersected with the vessel's.
 void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& nodes,
                         std::vector<RefinedBranch>& branches, const VesselWall& wall, double spacing,
                         double max_shift = 6.0);

@@ -15,6 +15,17 @@ std::vector<Eigen::Vector3d> smooth_polyline(std::vector<Eigen::Vector3d> p, int
   return p;
 }
 
+std::vector<Eigen::Vector3d> taubin_smooth_polyline(std::vector<Eigen::Vector3d> p, int iterations) {
+  constexpr double kShrink = 0.5, kInflate = -0.53;  // Taubin (1995): pass band ~0.1 of the sampling rate
+  for (int it = 0; it < iterations; ++it)
+    for (double w : {kShrink, kInflate}) {
+      std::vector<Eigen::Vector3d> q = p;
+      for (size_t i = 1; i + 1 < p.size(); ++i) q[i] = p[i] + w * (0.5 * (p[i - 1] + p[i + 1]) - p[i]);
+      p.swap(q);
+    }
+  return p;
+}
+
 std::vector<Eigen::Vector3d> resample_polyline(const std::vector<Eigen::Vector3d>& p, double spacing) {
   if (p.size() < 2) return p;
   std::vector<double> s(p.size(), 0.0);

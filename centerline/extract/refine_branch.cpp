@@ -95,7 +95,7 @@ RefinedBranch refine_branch(const std::vector<Eigen::Vector3d>& chain, bool free
     if (pass == 0) extend_free_ends();
   }
   extend_free_ends();
-  p = resample_polyline(smooth_polyline(p, o.smoothing_iterations), o.spacing);
+  p = resample_polyline(taubin_smooth_polyline(p, o.smoothing_iterations), o.spacing);
   r = tube_radii(p, wall, o.rays, nullptr, &out.elongation);
   // Fill non-tube sections (bifurcations, caps) by interpolating along the branch
   // between tube sections; a branch with no tube section keeps the wall distance.

@@ -27,7 +27,11 @@ void check_anatomy(const AnatomyEntry& a) {
     CHECK(acc.mean_distance <= 0.05);
     CHECK(acc.p95_distance <= 0.15);
     CHECK(acc.max_bifurcation_offset <= 1.0);
-    CHECK(acc.max_bifurcation_offset <= 0.5);  // achieved: <= 0.27 on every anatomy (side_branch_axis.hpp)
+    // Held at about twice the achieved level (MCF's raw skeleton varies from run to run):
+    // mean <= 0.0035, p95 <= 0.023, bifurcations <= 0.27 radius (centerline/extract/README.md).
+    CHECK(acc.mean_distance <= 0.01);
+    CHECK(acc.p95_distance <= 0.05);
+    CHECK(acc.max_bifurcation_offset <= 0.5);
     CHECK(acc.mean_radius_error <= 0.10);
     // Target k of the extraction is target k of the truth (the numbering rule depends on
     // geometry only): within two radii of it. Targets whose true path lengths tie within

@@ -1,4 +1,4 @@
-#include "centerline/extract/side_branch_axis.hpp"
+#include "centerline/extract/merged_lumen_axis.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
@@ -70,17 +70,16 @@ double arc_span(const std::vector<Eigen::Vector2d>& hits, const Eigen::Vector2d&
 
 }  // namespace
 
-SideBranchAxis trace_side_branch_axis(const VesselWall& wall, const Eigen::Vector3d& point,
-                                      const Eigen::Vector3d& direction, double radius,
-                                      const std::function<double(const Eigen::Vector3d&)>& parent_distance,
-                                      double parent_radius, double step, double reach) {
-  SideBranchAxis out;
+MergedLumenAxis trace_merged_lumen_axis(const VesselWall& wall, const Eigen::Vector3d& point,
+                                        const Eigen::Vector3d& direction, double radius,
+                                        const MergedLumenQuery& query, double step, double reach) {
+  MergedLumenAxis out;
   constexpr int kRays = 72;
-  const double keep_beyond = parent_radius + 0.5 * radius;
   Eigen::Vector3d p0 = point, d = direction.normalized();
   // Two passes: the second casts its rays from the axis the first recovered.
   for (int pass = 0; pass < 2; ++pass) {
     std::vector<Eigen::Vector3d> centres;
+    std::vector<double> radii;
     const Eigen::Vector3d u = d.unitOrthogonal(), v = d.cross(u);
     const double far = (point - p0).dot(d);  // every pass starts level with the clean-tube point
     double r = radius;                        // follows the branch's taper while arcs are wide
@@ -88,14 +87,14 @@ SideBranchAxis trace_side_branch_axis(const VesselWall& wall, const Eigen::Vecto
     for (double s = 0.0; s <= reach * radius && misses < 4; s += step) {
       if (!centres.empty()) ++misses;  // reset below when this station gives a centre
       const Eigen::Vector3d origin = p0 + (far - s) * d;
-      if (parent_distance(origin) < 0.25 * parent_radius) break;  // on the parent's axis: junction reached
+      if (query.at_junction(origin)) break;
       std::vector<Eigen::Vector2d> hits;
       for (int k = 0; k < kRays; ++k) {
         const double a = 2.0 * M_PI * k / kRays;
         const Eigen::Vector3d ray = std::cos(a) * u + std::sin(a) * v;
         const double t = wall.ray_hit(origin, ray, 2.0 * radius);
         if (!(t <= 2.0 * radius)) continue;
-        if (parent_distance(origin + t * ray) > keep_beyond) hits.emplace_back(t * std::cos(a), t * std::sin(a));
+        if (query.own_wall(origin + t * ray)) hits.emplace_back(t * std::cos(a), t * std::sin(a));
       }
       if (hits.size() < 8) continue;
       Eigen::Vector2d c;
@@ -110,10 +109,13 @@ SideBranchAxis trace_side_branch_axis(const VesselWall& wall, const Eigen::Vecto
       }
       if (c.norm() > 0.75 * r || residual > 0.08 * r || arc_span(hits, c) < 0.5 * M_PI) continue;
       centres.push_back(origin + c.x() * u + c.y() * v);
+      radii.push_back(r);
       misses = 0;
     }
     // The branch is straight for a few radii from the junction and then often curves away: fit
     // the axis over the 3.5 radii nearest the junction only.
+    std::vector<Eigen::Vector3d> all = centres;
+    std::vector<double> all_radii = radii;
     while (centres.size() > 4 && (centres.front() - centres.back()).norm() > 3.5 * radius) centres.erase(centres.begin());
     if (centres.size() < 4) return out;
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
@@ -128,8 +130,10 @@ SideBranchAxis trace_side_branch_axis(const VesselWall& wall, const Eigen::Vecto
     if (span < 1.5 * radius || axis.dot(d) < std::cos(0.3)) return out;  // too short, or off by > 17 deg
     p0 = mean;
     d = axis;
-    std::reverse(centres.begin(), centres.end());  // nearest the junction first
-    out.centres = std::move(centres);
+    std::reverse(all.begin(), all.end());  // nearest the junction first
+    std::reverse(all_radii.begin(), all_radii.end());
+    out.centres = std::move(all);
+    out.radii = std::move(all_radii);
   }
   out.ok = true;
   out.point = p0;

@@ -1,11 +1,11 @@
-// A shallow side branch traced into the lumen it shares with its parent (side_branch_axis.hpp),
+// A shallow side branch traced into the lumen it shares with its parent (merged_lumen_axis.hpp),
 // on a generated Y: a straight parent along x and a straight side branch leaving at 25 degrees.
 #include <catch2/catch.hpp>
 #include <cmath>
 
 #include "centerline/extract/compare_centerlines.hpp"
 #include "centerline/extract/extract_centerline.hpp"
-#include "centerline/extract/side_branch_axis.hpp"
+#include "centerline/extract/merged_lumen_axis.hpp"
 #include "centerline/extract/vessel_wall.hpp"
 #include "centerline/vessel_tree/generate_anatomy.hpp"
 
@@ -40,8 +40,10 @@ TEST_CASE("a shallow side branch's axis is recovered inside the merged lumen", "
   const Vector3d start = kJunction + 14.0 * kSideDir + Vector3d(0, 0, 0.1);
   const Vector3d tilted = (kSideDir + Vector3d(0, 0, 0.03)).normalized();
   auto parent_distance = [](const Vector3d& q) { return std::hypot(q.y(), q.z()); };
-  const gw::SideBranchAxis axis =
-      gw::trace_side_branch_axis(wall, start, tilted, kSideRadius, parent_distance, kParentRadius, 0.5);
+  const gw::MergedLumenQuery query{
+      [&](const Vector3d& q) { return parent_distance(q) > kParentRadius + 0.5 * kSideRadius; },  // past the fillet
+      [&](const Vector3d& q) { return parent_distance(q) < 0.25 * kParentRadius; }};
+  const gw::MergedLumenAxis axis = gw::trace_merged_lumen_axis(wall, start, tilted, kSideRadius, query, 0.5);
   REQUIRE(axis.ok);
   CHECK(axis.direction.dot(kSideDir) > std::cos(1.0 * M_PI / 180.0));
   CHECK(off_side_axis(axis.point) < 0.05 * kSideRadius);

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "centerline/extract/merged_lumen_axis.hpp"
+#include "centerline/extract/polyline_tools.hpp"
 
 namespace gw {
 namespace {
@@ -89,14 +90,8 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
         ok = false;
         break;
       }
-      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-      for (const auto& q : window) mean += q;
-      mean /= double(window.size());
-      Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-      for (const auto& q : window) cov += (q - mean) * (q - mean).transpose();
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-      Eigen::Vector3d d = eig.eigenvectors().col(2);
-      if (d.dot(window.back() - window.front()) < 0) d = -d;  // away from the junction
+      Eigen::Vector3d mean, d;
+      fit_line(window, mean, d);  // d points away from the junction
       dir[k] = d;
       mid[k] = mean;
       start[k] = window.front();

@@ -1,4 +1,5 @@
 #include "centerline/extract/merged_lumen_axis.hpp"
+#include "centerline/extract/polyline_tools.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
@@ -118,13 +119,8 @@ MergedLumenAxis trace_merged_lumen_axis(const VesselWall& wall, const Eigen::Vec
     std::vector<double> all_radii = radii;
     while (centres.size() > 4 && (centres.front() - centres.back()).norm() > 3.5 * radius) centres.erase(centres.begin());
     if (centres.size() < 4) return out;
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (const auto& q : centres) mean += q;
-    mean /= double(centres.size());
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const auto& q : centres) cov += (q - mean) * (q - mean).transpose();
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-    Eigen::Vector3d axis = eig.eigenvectors().col(2);
+    Eigen::Vector3d mean, axis;
+    fit_line(centres, mean, axis);
     if (axis.dot(d) < 0) axis = -axis;
     const double span = (centres.front() - centres.back()).norm();
     if (span < 1.5 * radius || axis.dot(d) < std::cos(0.3)) return out;  // too short, or off by > 17 deg

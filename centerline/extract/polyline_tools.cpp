@@ -1,5 +1,6 @@
 #include "centerline/extract/polyline_tools.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -24,6 +25,18 @@ std::vector<Eigen::Vector3d> taubin_smooth_polyline(std::vector<Eigen::Vector3d>
       p.swap(q);
     }
   return p;
+}
+
+void fit_line(const std::vector<Eigen::Vector3d>& points, Eigen::Vector3d& point, Eigen::Vector3d& direction) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& q : points) mean += q;
+  mean /= double(points.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const auto& q : points) cov += (q - mean) * (q - mean).transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  direction = eig.eigenvectors().col(2);
+  if (direction.dot(points.back() - points.front()) < 0) direction = -direction;
+  point = mean;
 }
 
 std::vector<Eigen::Vector3d> resample_polyline(const std::vector<Eigen::Vector3d>& p, double spacing) {

@@ -22,6 +22,10 @@ std::vector<Eigen::Vector3d> resample_polyline(const std::vector<Eigen::Vector3d
 // the neighbouring tangent.
 std::vector<Eigen::Vector3d> polyline_tangents(const std::vector<Eigen::Vector3d>& points);
 
+// Least-squares line through `points` (at least two): their mean and the principal direction,
+// oriented from the first point towards the last.
+void fit_line(const std::vector<Eigen::Vector3d>& points, Eigen::Vector3d& point, Eigen::Vector3d& direction);
+
 // Linear interpolation of `values` (one per point) at arc length `s` from the first point.
 double interpolate_along(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& values, double s);
 

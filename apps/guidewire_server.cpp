@@ -39,6 +39,10 @@ int main(int argc, char** argv) {
   app.add_option("--reward-omega-slope", config.reward.omega_slope,
                  "slope of the reward's omega sigmoid (paper Eq. 3: 5)")
       ->capture_default_str();
+  app.add_option("--roll-disturbance", config.roll_disturbance_probability,
+                 "training robustness: per-episode probability of an unannounced proximal roll of 45-180 deg "
+                 "(0 = the paper's task)")
+      ->capture_default_str();
   app.add_option("--step-time-limit", options.session.step_time_limit_s,
                  "seconds one env step may run before it is cut off with an error (0 = none)")
       ->capture_default_str();

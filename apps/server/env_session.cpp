@@ -83,6 +83,9 @@ std::string spec_json(const NavigationTask& task) {
               {"control_mode", control_mode_name(c.control_mode)},
               {"omega_plane", omega_plane_name(c.omega_plane)},
               {"reward", {{"omega_centre", c.reward.omega_centre}, {"omega_slope", c.reward.omega_slope}}},
+              {"roll_disturbance", {{"probability", c.roll_disturbance_probability},
+                                    {"min_rad", c.roll_disturbance_min_rad},
+                                    {"max_rad", c.roll_disturbance_max_rad}}},
               {"control_radius_mm", c.control_radius_mm},
               {"success_radius_mm", c.success_radius_mm}}}};
   return j.dump();

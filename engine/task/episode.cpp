@@ -118,6 +118,21 @@ void observe(const NavigationTask& task, EpisodeState& s, bool first) {
   s.in_control = course.policy_always || near_a_bifurcation(c, course, tip);
 }
 
+// Drawn after every other reset draw, and only when enabled, so episodes without it are unchanged.
+void draw_roll_disturbance(const TaskConfig& c, double advance_mm, SplitMix64& rng, EpisodeState& s) {
+  if (c.roll_disturbance_probability <= 0 || rng.uniform() >= c.roll_disturbance_probability) return;
+  const double angle = c.roll_disturbance_min_rad + (c.roll_disturbance_max_rad - c.roll_disturbance_min_rad) * rng.uniform();
+  const double steps_to_end = s.course->line.length / advance_mm;
+  s.disturbance_from_step = static_cast<int>(0.5 * steps_to_end * rng.uniform());
+  s.disturbance_steps = std::max(1, static_cast<int>(std::lround(angle / (c.max_rotation_rad_per_s * env_dt(c)))));
+  s.disturbance_sign = rng.uniform() < 0.5 ? -1.0 : 1.0;
+}
+
+double disturbance_rate(const TaskConfig& c, const EpisodeState& s) {
+  const bool on = s.steps >= s.disturbance_from_step && s.steps < s.disturbance_from_step + s.disturbance_steps;
+  return on ? s.disturbance_sign * c.max_rotation_rad_per_s : 0.0;
+}
+
 }  // namespace
 
 EpisodeState reset_episode(const NavigationTask& task, int anatomy, int target_id, std::uint64_t seed) {
@@ -155,6 +170,7 @@ EpisodeState reset_episode(const NavigationTask& task, int anatomy, int target_i
   const double advance = env_dt(c) * c.push_mm_per_s;
   s.max_steps = c.max_steps > 0 ? c.max_steps
                                 : static_cast<int>(std::ceil(c.max_steps_path_factor * s.course->line.length / advance)) + 50;
+  draw_roll_disturbance(c, advance, rng, s);
   observe(task, s, true);
   s.obs[obs_index::kAction] = 0.0;
   s.best_progress_mm = s.progress_mm;
@@ -182,7 +198,7 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, double act
   const TaskConfig& c = task.config;
   const Anatomy& anatomy = task.anatomies[static_cast<size_t>(s.anatomy)];
   const double applied = s.in_control ? std::clamp(action, -1.0, 1.0) : 0.0;
-  const Control control{c.push_mm_per_s, applied * c.max_rotation_rad_per_s};
+  const Control control{c.push_mm_per_s, applied * c.max_rotation_rad_per_s + disturbance_rate(c, s)};
 
   StepOutcome out;
   const auto start = std::chrono::steady_clock::now();

@@ -34,6 +34,13 @@ void check_task_config(const TaskConfig& c) {
   require(c.stuck_steps >= 1, "stuck_steps", ">= 1");
   require(c.stuck_progress_mm >= 0, "stuck_progress_mm", ">= 0");
   require(c.wire_reserve_mm >= 0, "wire_reserve_mm", ">= 0");
+  require(c.roll_disturbance_probability >= 0 && c.roll_disturbance_probability <= 1,
+          "roll_disturbance_probability", "in [0, 1]");
+  require(c.roll_disturbance_min_rad > 0 && c.roll_disturbance_min_rad <= c.roll_disturbance_max_rad,
+          "roll_disturbance_min_rad", "> 0 and <= roll_disturbance_max_rad");
+  require(c.roll_disturbance_max_rad <= 6.283185307179586, "roll_disturbance_max_rad", "<= 2 pi");
+  require(c.roll_disturbance_probability == 0 || c.max_rotation_rad_per_s > 0, "max_rotation_rad_per_s",
+          "> 0 when roll_disturbance_probability > 0");
 }
 
 ControlMode parse_control_mode(const std::string& text) {

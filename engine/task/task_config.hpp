@@ -59,6 +59,15 @@ struct TaskConfig {
   int stuck_steps = 60;                  // truncate when the tip's progress along the path has not grown
   double stuck_progress_mm = 1.0;        //   by stuck_progress_mm in stuck_steps env steps (24 mm pushed)
   double wire_reserve_mm = 5.0;          // truncate when less than this much wire is left outside
+  // --- Training robustness (0 = the paper's task) ---
+  // An unannounced proximal roll once per episode with this probability: the wire is twisted at the
+  // full rotation rate, on top of the action, by a random angle at a random moment of the first half
+  // of the course. Without it a policy only meets a badly oriented tip right after reset (lambda ~ 1):
+  // in trees control is handed over mid-course and the roll at the hand-over can be anything, and the
+  // policy shipped before this setting froze there (omega +0.5 at lambda 0.6: action ~0, wrong branch).
+  double roll_disturbance_probability = 0.0;
+  double roll_disturbance_min_rad = 0.7853981633974483;  // |angle| uniform in [pi/4, pi]: from a
+  double roll_disturbance_max_rad = 3.141592653589793;   // nudge to the worst (a half turn)
 };
 
 // Throws std::invalid_argument naming the first field out of range.

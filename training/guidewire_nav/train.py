@@ -36,6 +36,9 @@ class Settings:
     omega_plane: str = "approach"          # omega's plane: approach (obs/2) or correct_branch (paper, obs/1)
     reward_omega_centre: float = 0.1       # reward sigmoid 2/(1+exp(slope(omega-centre)))-1; paper Eq. 3 is
     reward_omega_slope: float = 5.0        #   centre 0.1, slope 5 (engine/task/reward.hpp says why to change)
+    roll_disturbance: float = 0.0          # per-episode probability of an unannounced 45-180 deg proximal
+                                           #   roll (robustness; 0 = the paper's task, task_config.hpp says why)
+    init_model: str = ""                   # fine-tune: start from this SB3 SAC zip (e.g. a checkpoint)
     total_steps: int = 150_000             # environment steps over all workers
     envs: int = 2                          # parallel servers (SubprocVecEnv); 1 = in-process DummyVecEnv
     seed: int = 0
@@ -86,7 +89,7 @@ def git_commit() -> str:
 
 def server_args(s: Settings) -> list[str]:
     return ["--omega-plane", s.omega_plane, "--reward-omega-centre", repr(s.reward_omega_centre),
-            "--reward-omega-slope", repr(s.reward_omega_slope)]
+            "--reward-omega-slope", repr(s.reward_omega_slope), "--roll-disturbance", repr(s.roll_disturbance)]
 
 
 def make_env_fn(s: Settings, rank: int, eval_env: bool = False):
@@ -203,13 +206,16 @@ def main(argv=None) -> int:
     eval_env = make_env_fn(s, 0, eval_env=True)()
 
     # --- SAC with the paper's settings
-    model = SAC(
-        "MlpPolicy", vec_env,
+    sac_settings = dict(
         learning_rate=s.learning_rate, buffer_size=s.buffer_size, batch_size=s.batch_size, gamma=s.gamma,
         learning_starts=s.learning_starts, train_freq=s.train_freq, gradient_steps=s.gradient_steps,
-        ent_coef=s.ent_coef, policy_kwargs={"net_arch": [int(n) for n in s.net_arch.split(",")]},
         seed=s.seed, device=s.device, verbose=0,
     )
+    if s.init_model:  # fine-tuning: the saved networks (and learned entropy coefficient), a fresh buffer
+        model = SAC.load(s.init_model, env=vec_env, **sac_settings)
+    else:
+        model = SAC("MlpPolicy", vec_env, ent_coef=s.ent_coef,
+                    policy_kwargs={"net_arch": [int(n) for n in s.net_arch.split(",")]}, **sac_settings)
     model.set_logger(configure(str(out / "logs"), ["csv", "tensorboard"]))
 
     # --- periodic evaluation: success rate over seeded episodes; keeps the best actor

@@ -160,3 +160,26 @@ def test_reward_shape_is_chosen_at_the_server_and_changes_only_the_reward(server
     finally:
         paper.close()
         steep.close()
+
+
+def test_roll_disturbance_is_a_server_setting_and_changes_the_episode(server_bin):
+    # Off (the paper's task) unless asked for; at probability 1 the same seed and actions drift apart
+    # once the unannounced twist starts, and the observation's action stays the agent's own.
+    plain = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1})
+    rolled = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1}, server_args=["--roll-disturbance", "1"])
+    try:
+        assert plain.spec_reply["task"]["roll_disturbance"]["probability"] == 0.0
+        assert rolled.spec_reply["task"]["roll_disturbance"]["probability"] == 1.0
+        a, _ = plain.reset(seed=3)
+        b, _ = rolled.reset(seed=3)
+        assert np.array_equal(a, b)
+        differs = False
+        for _ in range(150):
+            a, *_ = plain.step(np.zeros(1, dtype=np.float32))
+            b, *_ = rolled.step(np.zeros(1, dtype=np.float32))
+            assert b[8] == 0.0
+            differs = differs or not np.array_equal(a, b)
+        assert differs
+    finally:
+        plain.close()
+        rolled.close()

@@ -170,3 +170,49 @@ TEST_CASE("a wrong child bending back beside the access vessel is not 'entered' 
     }
   }
 }
+
+TEST_CASE("roll disturbance: seeded, off by default, twists the proximal end by the drawn angle", "[task][episode]") {
+  const gw::NavigationTask plain = free_space_task(gwtest::y_graph());
+  gw::TaskConfig config;
+  config.roll_disturbance_probability = 1.0;
+  const gw::NavigationTask disturbed = free_space_task(gwtest::y_graph(), config);
+  const gw::EpisodeState p = gw::reset_episode(plain, 0, 1, 11);
+  const gw::EpisodeState d = gw::reset_episode(disturbed, 0, 1, 11);
+  // The paper's task draws nothing: the start is the same as without the setting.
+  CHECK(p.disturbance_steps == 0);
+  CHECK(d.start_rotation_rad == p.start_rotation_rad);
+  REQUIRE(d.disturbance_steps > 0);
+  const double rate = config.max_rotation_rad_per_s;
+  const double step_s = config.frame_skip * config.dt_s;
+  const double angle = d.disturbance_steps * rate * step_s;
+  CHECK(angle >= config.roll_disturbance_min_rad - rate * step_s);
+  CHECK(angle <= config.roll_disturbance_max_rad + rate * step_s);
+  CHECK(std::abs(d.disturbance_sign) == 1.0);
+  CHECK(gw::reset_episode(disturbed, 0, 1, 11).disturbance_from_step == d.disturbance_from_step);
+  // With no action the proximal end turns by exactly the disturbance, and only during its window.
+  gw::EpisodeState s = d;
+  const int end = d.disturbance_from_step + d.disturbance_steps;
+  for (int k = 0; k < end + 3 && !s.done; ++k) {
+    const double before = s.wire.proximal_rotation_rad;
+    gw::step_episode(disturbed, s, 0.0);
+    const bool inside = k >= d.disturbance_from_step && k < end;
+    CHECK(s.wire.proximal_rotation_rad - before == Approx(inside ? d.disturbance_sign * rate * step_s : 0.0).margin(1e-12));
+  }
+  REQUIRE_FALSE(s.done);
+  CHECK(s.wire.proximal_rotation_rad - d.wire.proximal_rotation_rad == Approx(d.disturbance_sign * angle).margin(1e-9));
+  // Across seeds: some episodes are spared at probability 0.5, timing and direction vary.
+  config.roll_disturbance_probability = 0.5;
+  const gw::NavigationTask half = free_space_task(gwtest::y_graph(), config);
+  int with = 0, positive = 0;
+  for (std::uint64_t seed = 0; seed < 200; ++seed) {
+    const gw::EpisodeState e = gw::reset_episode(half, 0, 2, seed);
+    with += e.disturbance_steps > 0;
+    positive += e.disturbance_sign > 0;
+  }
+  CHECK(with > 70);
+  CHECK(with < 130);
+  CHECK(positive > 0.3 * with);
+  CHECK(positive < 0.7 * with);
+  config.roll_disturbance_probability = 1.5;
+  CHECK_THROWS_WITH(gw::check_task_config(config), Catch::Contains("roll_disturbance_probability"));
+}

@@ -33,6 +33,10 @@ int main(int argc, char** argv) {
   app.add_option("--rows", rows_filter, "only rows whose name contains this text");
   app.add_option("--out", out_dir, "folder for results.md and results.json");
   std::string controllers = "policy,push-only,scripted-omega";
+  app.add_option("--reachability-seeds", o.reachability_seeds,
+                 "probe targets no controller reached with 8 rotation schedules from this many seeds (0 = skip)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--controllers", controllers, "comma-separated columns: policy, push-only, scripted-omega");
   CLI11_PARSE(app, argc, argv);
   try {

@@ -8,11 +8,13 @@
 #include <map>
 #include <optional>
 #include <random>
+#include <set>
 #include <sstream>
 
 #include "apps/runner/controller.hpp"
 #include "apps/runner/episode_batch.hpp"
 #include "apps/runner/navigation_anatomy.hpp"
+#include "apps/runner/reachability.hpp"
 #include "engine/task/navigation_task.hpp"
 #include "engine/wire/wire_params.hpp"
 
@@ -44,6 +46,40 @@ std::vector<EpisodeRequest> row_requests(const NavigationTask& task, int episode
     const int a = k % static_cast<int>(task.anatomies.size());
     const auto count = static_cast<std::uint64_t>(task.anatomies[static_cast<std::size_t>(a)].graph.targets.size());
     out.push_back({a, 1 + static_cast<int>(rng() % count), seed + static_cast<std::uint64_t>(k)});
+  }
+  return out;
+}
+
+std::string target_key(const std::string& anatomy, int target) { return anatomy + " T" + std::to_string(target); }
+
+// The targets of a row that no column reached in any episode, probed with the rotation schedules
+// (a target some controller reached is reachable by definition and costs nothing).
+nlohmann::json row_reachability(const NavigationTask& task, const nlohmann::json& results, int seeds, int threads) {
+  std::map<std::string, int> successes;
+  std::map<std::string, ReachabilityCase> cases;
+  for (const auto& [column, summary] : results.items())
+    for (const nlohmann::json& ep : summary["results"]) {
+      const std::string key = target_key(ep["anatomy"].get<std::string>(), ep["target"].get<int>());
+      successes[key] += ep["outcome"] == "success";
+      if (!cases.count(key))
+        cases[key] = {find_anatomy(task, ep["anatomy"].get<std::string>()), ep["target"].get<int>()};
+    }
+  std::vector<std::string> keys;
+  std::vector<ReachabilityCase> todo;
+  for (const auto& [key, n] : successes)
+    if (n == 0) {
+      keys.push_back(key);
+      todo.push_back(cases[key]);
+    }
+  nlohmann::json out = nlohmann::json::array();
+  if (seeds <= 0 || todo.empty()) return out;
+  const std::vector<Reachability> verdicts = probe_reachability(task, todo, seeds, threads);
+  for (std::size_t i = 0; i < todo.size(); ++i) {
+    nlohmann::json j = to_json(verdicts[i]);
+    j["anatomy"] = task.anatomies[static_cast<std::size_t>(todo[i].anatomy)].name;
+    j["target"] = todo[i].target_id;
+    j["key"] = keys[i];
+    out.push_back(j);
   }
   return out;
 }
@@ -94,6 +130,7 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
         const std::string column = kind == "policy" ? "sac-policy" : kind;
         r["results"][column] = summary;
       }
+      r["reachability"] = row_reachability(default_task, r["results"], o.reachability_seeds, o.threads);
     } catch (const std::exception& e) {
       r["skipped"] = e.what();
     }
@@ -105,10 +142,36 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
           {"settings",
            {{"policy", o.policy}, {"base_policy", o.base_policy}, {"seed", o.seed},
             {"centerlines", o.extract_centerlines ? "extracted (CGAL MCF)" : "ground truth"},
-            {"episode_scale", o.episode_scale}}}};
+            {"episode_scale", o.episode_scale},
+            {"reachability_seeds", o.reachability_seeds}}}};
 }
 
 namespace {
+
+// Keys ("anatomy Tn") of the row's targets that no rotation schedule reached.
+std::set<std::string> unreachable_targets(const nlohmann::json& row) {
+  std::set<std::string> out;
+  if (row.contains("reachability"))
+    for (const nlohmann::json& t : row["reachability"])
+      if (!t.value("reachable", true) && !t.contains("error")) out.insert(t["key"].get<std::string>());
+  return out;
+}
+
+// SAC's success over the episodes whose target some rotation reaches: "95% (38/40)", or "—".
+std::string reachable_percent(const nlohmann::json& row) {
+  if (!row["results"].contains("sac-policy") || !row.contains("reachability")) return "—";
+  const std::set<std::string> unreachable = unreachable_targets(row);
+  int n = 0, ok = 0;
+  for (const nlohmann::json& ep : row["results"]["sac-policy"]["results"]) {
+    if (unreachable.count(target_key(ep["anatomy"].get<std::string>(), ep["target"].get<int>()))) continue;
+    ++n;
+    ok += ep["outcome"] == "success";
+  }
+  if (n == 0) return "—";
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(0) << 100.0 * ok / n << "% (" << ok << "/" << n << ")";
+  return s.str();
+}
 
 std::string percent(const nlohmann::json& results, const std::string& column) {
   if (!results.contains(column)) return "—";
@@ -131,7 +194,7 @@ std::string failure_place(const std::string& detail) {
 
 // "wrong_branch 9 (t3 T1 goal 1/1 x5, t4 T2 goal 1/1 x4), diverged 1 (...)": counts per outcome, and
 // per outcome the anatomy, target and bifurcation where they happened, most frequent first.
-std::string failure_modes(const nlohmann::json& summary) {
+std::string failure_modes(const nlohmann::json& summary, const std::set<std::string>& unreachable) {
   std::string text;
   for (const auto& [outcome, count] : summary["outcomes"].items()) {
     if (outcome == "success" || count.get<int>() == 0) continue;
@@ -139,9 +202,11 @@ std::string failure_modes(const nlohmann::json& summary) {
     if (summary.contains("results"))
       for (const nlohmann::json& ep : summary["results"]) {
         if (ep.value("outcome", "") != outcome) continue;
-        std::string place = ep.value("anatomy", "?") + " T" + std::to_string(ep.value("target", 0));
+        std::string place = target_key(ep.value("anatomy", "?"), ep.value("target", 0));
+        const bool no_rotation_reaches = unreachable.count(place) > 0;
         const std::string goal = failure_place(ep.value("detail", ""));
         if (!goal.empty()) place += " " + goal;
+        if (no_rotation_reaches) place += " [unreachable]";
         ++places[place];
       }
     std::vector<std::pair<std::string, int>> sorted(places.begin(), places.end());
@@ -161,15 +226,18 @@ std::string failure_modes(const nlohmann::json& summary) {
 
 std::string evaluation_to_markdown(const nlohmann::json& e) {
   std::ostringstream md;
-  md << "| case | episodes | SAC (ours) | push-only | scripted omega | paper |\n|---|---|---|---|---|---|\n";
+  md << "| case | episodes | SAC (ours) | push-only | scripted omega | paper | SAC, reachable targets |\n"
+        "|---|---|---|---|---|---|---|\n";
   for (const nlohmann::json& r : e["rows"]) {
     const nlohmann::json& res = r["results"];
     md << "| " << r["name"].get<std::string>() << " | " << r["episodes"].get<int>() << " | "
        << percent(res, "sac-policy") << " | " << percent(res, "push-only") << " | " << percent(res, "scripted-omega")
-       << " | " << std::lround(100.0 * r["paper"].get<double>()) << "% |\n";
+       << " | " << std::lround(100.0 * r["paper"].get<double>()) << "% | " << reachable_percent(r) << " |\n";
   }
   md << "\nFailure modes (episodes that did not reach the target, by outcome; in brackets the anatomy, "
-        "target and, for a wrong branch, the goal (bifurcation on the path, k of n) it was lost before):\n\n";
+        "target and, for a wrong branch, the goal (bifurcation on the path, k of n) it was lost before; "
+        "[unreachable]: no controller of the row reached that target and none of "
+        "the rotation schedules of apps/runner/rotation_schedules.hpp did either):\n\n";
   for (const nlohmann::json& r : e["rows"]) {
     md << "- **" << r["name"].get<std::string>() << "**: ";
     if (r.contains("skipped")) {
@@ -177,8 +245,9 @@ std::string evaluation_to_markdown(const nlohmann::json& e) {
       continue;
     }
     std::string sep;
+    const std::set<std::string> unreachable = unreachable_targets(r);
     for (const auto& [column, summary] : r["results"].items()) {
-      md << sep << column << ": " << failure_modes(summary);
+      md << sep << column << ": " << failure_modes(summary, unreachable);
       sep = "; ";
     }
     for (const auto& note : r["notes"]) md << sep << note.get<std::string>();

@@ -30,14 +30,18 @@ struct EvaluationOptions {
   std::uint64_t seed = 0;
   int threads = 1;
   bool progress = false;              // a line per finished row on stderr
+  // Targets that no controller of a row reached are probed with the rotation schedules
+  // (reachability.hpp) from this many seeds each; 0 = do not probe.
+  int reachability_seeds = 2;
 };
 
-// Runs the rows and returns {"rows": [{name, episodes, paper, results: {controller: summary}, notes}],
-// "settings": ...}. Rows whose anatomy or policy is missing are kept with a "skipped" reason.
+// Runs the rows and returns {"rows": [{name, episodes, paper, results: {controller: summary}, notes,
+// reachability: [{anatomy, target, reachable, ...}] for the targets no controller reached}], "settings": ...}. Rows whose anatomy or policy is missing are kept with a "skipped" reason.
 nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const EvaluationOptions& options);
 
-// The table as Markdown: case | episodes | SAC | push-only | scripted omega | paper, then per row the
-// failure modes seen (outcome counts) so a short row says why, not only how much.
+// The table as Markdown: case | episodes | SAC | push-only | scripted omega | paper | SAC on reachable
+// targets, then per row the failure modes seen (outcome counts, places, unreachable targets marked) so a
+// short row says why, not only how much.
 std::string evaluation_to_markdown(const nlohmann::json& evaluation);
 
 }  // namespace gw

@@ -1,6 +1,7 @@
 // What navigate and evaluate share: planning batches (--target N|all|random), running them on
 // threads with the same result as one thread, the JSON summary, output files, and the table.
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -9,6 +10,8 @@
 #include "apps/runner/evaluation_table.hpp"
 #include "apps/runner/navigation_anatomy.hpp"
 #include "apps/runner/navigation_outputs.hpp"
+#include "apps/runner/reachability.hpp"
+#include "apps/runner/rotation_schedules.hpp"
 #include "apps/runner/run_episode.hpp"
 #include "engine/task/navigation_task.hpp"
 #include "engine/wire/wire_params.hpp"
@@ -187,6 +190,7 @@ TEST_CASE("evaluation table: the paper's rows and a Markdown table that says why
   o.controllers = {"push-only", "policy"};
   o.extract_centerlines = false;
   o.episode_scale = 0.02;  // 2 episodes
+  o.reachability_seeds = 0;  // probing is tested below
   gw::EvaluationRow row = rows[0];
   row.anatomies = {"t1_straight_y"};
   gw::EvaluationRow missing = row;
@@ -198,6 +202,7 @@ TEST_CASE("evaluation table: the paper's rows and a Markdown table that says why
   CHECK(e["rows"][0]["results"]["push-only"]["episodes"] == 2);
   CHECK_FALSE(e["rows"][0]["results"].contains("sac-policy"));  // no policy given: column skipped, with a note
   CHECK(e["rows"][0]["notes"].size() == 1);
+  CHECK(e["rows"][0]["reachability"].empty());
   CHECK(e["rows"][1]["skipped"].get<std::string>().find("no_such_anatomy") != std::string::npos);
   const std::string md = gw::evaluation_to_markdown(e);
   CHECK(md.find("| training anatomies | 2 | — |") != std::string::npos);
@@ -222,6 +227,59 @@ TEST_CASE("evaluation table: the paper's rows and a Markdown table that says why
   const std::string why = gw::evaluation_to_markdown(by_hand);
   CHECK(why.find("wrong_branch 3 (coronary T3 goal 2/3 x2, coronary T1 goal 1/2 x1)") != std::string::npos);
   CHECK(why.find("diverged 1 (coronary T6 x1)") != std::string::npos);
+  CHECK(why.find("| coronary-like | 4 | — | — | 0% | 94% | — |") != std::string::npos);
+
+  // A target no rotation reaches is marked where it was lost, and SAC's rate over the others is shown.
+  nlohmann::json win = {{"outcome", "success"}, {"anatomy", "coronary"}, {"target", 1}, {"detail", ""}};
+  nlohmann::json sac = summary;
+  sac["results"] = {win, lost, lost, win};
+  by_hand["rows"][0]["results"]["sac-policy"] = sac;
+  by_hand["rows"][0]["reachability"] = {{{"key", "coronary T3"}, {"anatomy", "coronary"}, {"target", 3},
+                                         {"reachable", false}, {"episodes", 16}}};
+  const std::string marked = gw::evaluation_to_markdown(by_hand);
+  CHECK(marked.find("| 94% | 100% (2/2) |") != std::string::npos);
+  CHECK(marked.find("coronary T3 goal 2/3 [unreachable] x2") != std::string::npos);
+  CHECK(marked.find("coronary T1 goal 1/2 x1") != std::string::npos);
+}
+
+TEST_CASE("rotation schedules: the family, their rules, unknown names", "[runner]") {
+  CHECK(gw::rotation_schedule_names().size() == 8);
+  gw::Observation obs{};
+  obs[gw::obs_index::kOmega] = 0.5;  // tip bent towards the wrong branch
+  CHECK(gw::make_rotation_schedule("aim-0.95")->act(obs) == 1.0);
+  CHECK(gw::make_rotation_schedule("aim-0.95-ccw")->act(obs) == -1.0);
+  obs[gw::obs_index::kOmega] = -0.8;
+  CHECK(gw::make_rotation_schedule("aim-0.95")->act(obs) == 1.0);
+  CHECK(gw::make_rotation_schedule("aim-0.7")->act(obs) == 0.0);  // aimed well enough: hold
+  CHECK(gw::make_rotation_schedule("spin-0.3")->act(obs) == -0.3);
+  auto wiggle = gw::make_rotation_schedule("wiggle");
+  CHECK(wiggle->act(obs) == 0.0);
+  CHECK(wiggle->act(obs) == Approx(std::sin(0.3)));
+  CHECK(gw::make_rotation_schedule("wiggle")->act(obs) == 0.0);  // a fresh one starts again
+  CHECK_THROWS_WITH(gw::make_rotation_schedule("spin+2"), Catch::Contains("known: aim-0.95"));
+}
+
+TEST_CASE("reachability: a reachable target stops at the first success; a cut-short one tries the whole family",
+          "[runner]") {
+  const ShortT1 full(0);  // automatic step limit: targets can be reached
+  const auto reached = gw::probe_reachability(full.task, {{0, 1}}, 2, 1);
+  REQUIRE(reached.size() == 1);
+  CHECK(reached[0].reachable);
+  CHECK(reached[0].error.empty());
+  CHECK(reached[0].episodes < 16);
+  CHECK(gw::to_json(reached[0])["reached_by"]["schedule"] == reached[0].schedule);
+
+  const ShortT1 cut(10);  // 10 steps = 4 mm: no schedule can get there
+  const auto none = gw::probe_reachability(cut.task, {{0, 1}, {0, 2}}, 1, 2);
+  REQUIRE(none.size() == 2);
+  for (const auto& r : none) {
+    CHECK_FALSE(r.reachable);
+    CHECK(r.episodes == 8);
+    CHECK_FALSE(gw::to_json(r).contains("reached_by"));
+  }
+  const auto bad = gw::probe_reachability(cut.task, {{0, 9}}, 1, 1);
+  CHECK_FALSE(bad[0].reachable);
+  CHECK(bad[0].error.find("target 9") != std::string::npos);
 }
 
 TEST_CASE("a tip that whips free after winding up against the wall stays in the vessel", "[runner][whip]") {

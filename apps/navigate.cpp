@@ -44,7 +44,9 @@ int main(int argc, char** argv) {
   app.add_option("--episodes", episodes, "episodes per target ('random': in total)");
   app.add_option("--seed", seed, "episode k uses seed S+k: same seed, same episode");
   app.add_option("--policy", policy, "actor JSON (default: the shipped policy/trained/sac_actor.json)");
-  app.add_option("--controller", controller_kind, "policy | push-only | scripted-omega (baselines)");
+  app.add_option("--controller", controller_kind,
+                 "policy | push-only | scripted-omega (baselines) | a rotation schedule: aim-0.95, aim-0.7, "
+                 "aim-0.95-ccw, spin-1, spin-0.3, spin+0.3, spin+1, wiggle");
   app.add_option("--inlet", inlet_text, "x,y,z near the insertion point (default: the widest vessel end)");
   app.add_option("--scale", load.scale, "multiply coordinates (1000 for metres -> mm)");
   app.add_option("--centerline", load.centerline_path, "use this centerline JSON instead of extracting one");

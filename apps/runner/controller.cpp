@@ -1,9 +1,11 @@
 #include "apps/runner/controller.hpp"
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstdlib>
 #include <stdexcept>
 
+#include "apps/runner/rotation_schedules.hpp"
 #include "policy/load_actor.hpp"
 
 namespace gw {
@@ -79,7 +81,11 @@ std::unique_ptr<Controller> make_controller(const std::string& kind, const std::
   if (kind == "policy" || kind == "sac-policy") return make_policy_controller(actor_path);
   if (kind == "push-only") return make_push_only_controller();
   if (kind == "scripted-omega") return make_scripted_omega_controller();
-  throw std::invalid_argument("unknown controller '" + kind + "' (expected policy, push-only or scripted-omega)");
+  const auto& schedules = rotation_schedule_names();
+  if (std::find(schedules.begin(), schedules.end(), kind) != schedules.end()) return make_rotation_schedule(kind);
+  throw std::invalid_argument("unknown controller '" + kind +
+                              "' (expected policy, push-only, scripted-omega or a rotation schedule: aim-0.95, "
+                              "aim-0.7, aim-0.95-ccw, spin-1, spin-0.3, spin+0.3, spin+1, wiggle)");
 }
 
 std::string default_policy_path() {

@@ -15,6 +15,8 @@ class Controller {
   virtual const std::string& name() const = 0;
   // Rotation action in [-1, 1] for observation `obs`.
   virtual double act(const Observation& obs) = 0;
+  // Called before each episode: a controller reused across a batch forgets the last one here.
+  virtual void begin_episode() {}
   // Sets what the controller needs of the task's observation (an actor: the omega plane it was trained
   // with). Build the task with the adapted config; baselines take the default.
   virtual void adapt(TaskConfig& /*config*/) const {}
@@ -34,7 +36,8 @@ std::unique_ptr<Controller> make_push_only_controller();
 // elsewhere; a looser release leaves the tip half-aimed at shallow branches.
 std::unique_ptr<Controller> make_scripted_omega_controller(double release = -0.95);
 
-// "policy" (needs `actor_path`) | "push-only" | "scripted-omega"; throws std::invalid_argument otherwise.
+// "policy" (needs `actor_path`) | "push-only" | "scripted-omega" | a rotation schedule
+// (rotation_schedules.hpp: aim-0.95, spin+1, wiggle, ...); throws std::invalid_argument otherwise.
 std::unique_ptr<Controller> make_controller(const std::string& kind, const std::string& actor_path);
 
 // The shipped default actor: $GW_POLICY if set, else policy/trained/sac_actor.json of the source tree.

@@ -13,6 +13,7 @@ class ScheduleController final : public Controller {
   ScheduleController(std::string name, Rule rule) : name_(std::move(name)), rule_(std::move(rule)) {}
   const std::string& name() const override { return name_; }
   double act(const Observation& obs) override { return rule_(obs, step_++); }
+  void begin_episode() override { step_ = 0; }
 
  private:
   std::string name_;

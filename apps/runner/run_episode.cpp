@@ -44,6 +44,7 @@ void set_outcome(const StepOutcome& out, EpisodeTrace& trace) {
 EpisodeTrace run_episode(const NavigationTask& task, int anatomy, int target_id, std::uint64_t seed,
                          Controller& controller, const TraceOptions& options) {
   EpisodeState s = reset_episode(task, anatomy, target_id, seed);
+  controller.begin_episode();
   EpisodeTrace trace;
   trace.anatomy = task.anatomies[static_cast<std::size_t>(s.anatomy)].name;
   trace.controller = controller.name();

@@ -90,6 +90,14 @@ TEST_CASE("plan_episodes: unknown targets and bad counts are clear errors", "[ru
 TEST_CASE("controllers: names and missing policy files", "[runner]") {
   CHECK(gw::make_controller("push-only", "")->act(gw::Observation{}) == 0.0);
   CHECK_THROWS_WITH(gw::make_controller("pid", ""), Catch::Contains("'pid'"));
+  CHECK_THROWS_WITH(gw::make_controller("pid", ""), Catch::Contains("spin+1"));
+  // A rotation schedule is a controller too; reused across a batch, it restarts with each episode.
+  auto wiggle = gw::make_controller("wiggle", "");
+  CHECK(wiggle->name() == "wiggle");
+  wiggle->act(gw::Observation{});
+  CHECK(wiggle->act(gw::Observation{}) != 0.0);
+  wiggle->begin_episode();
+  CHECK(wiggle->act(gw::Observation{}) == 0.0);
   CHECK_THROWS_WITH(gw::make_controller("policy", "/nonexistent/actor.json"),
                     Catch::Contains("/nonexistent/actor.json"));
 }
@@ -148,6 +156,11 @@ TEST_CASE("run_batch: threads give the same episodes as one thread, and the summ
   }
   // different seeds start with a different wire rotation
   CHECK(serial[0].tip.back() != serial[1].tip.back());
+  // A stateful controller reused by one thread starts every episode afresh: same seed, same actions.
+  const std::vector<gw::EpisodeRequest> twice = {{0, 1, 9}, {0, 1, 9}};
+  const auto wiggles = gw::run_batch(t1.task, twice, [] { return gw::make_controller("wiggle", ""); }, 1, options);
+  CHECK(wiggles[0].action == wiggles[1].action);
+  CHECK(wiggles[0].tip.back() == wiggles[1].tip.back());
 
   const nlohmann::json summary = gw::summarize_episodes(serial);
   CHECK(summary["episodes"] == 4);

@@ -14,6 +14,9 @@ Schedules (omega = observation 9; +1 = tip bent towards the wrong branch):
   spin+-0.3, spin+-1   constant rotation rate (fraction of one turn per second)
   wiggle               a = sin(0.3 k), sweeping back and forth
 A case counts as reachable when any schedule reaches it from any of the seeds.
+
+The C++ side has the same family (apps/runner/rotation_schedules.hpp): `evaluate` probes the targets
+no controller of a row reached with it, and `navigate --controller spin+1` runs one. Keep the two in step.
 """
 
 from __future__ import annotations

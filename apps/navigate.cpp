@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "apps/runner/controller.hpp"
+#include "apps/runner/rotation_schedules.hpp"
 #include "apps/runner/episode_batch.hpp"
 #include "apps/runner/navigation_anatomy.hpp"
 #include "apps/runner/navigation_outputs.hpp"
@@ -45,8 +46,8 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed, "episode k uses seed S+k: same seed, same episode");
   app.add_option("--policy", policy, "actor JSON (default: the shipped policy/trained/sac_actor.json)");
   app.add_option("--controller", controller_kind,
-                 "policy | push-only | scripted-omega (baselines) | a rotation schedule: aim-0.95, aim-0.7, "
-                 "aim-0.95-ccw, spin-1, spin-0.3, spin+0.3, spin+1, wiggle");
+                 "policy | push-only | scripted-omega (baselines) | a rotation schedule: " +
+                     gw::rotation_schedule_list());
   app.add_option("--inlet", inlet_text, "x,y,z near the insertion point (default: the widest vessel end)");
   app.add_option("--scale", load.scale, "multiply coordinates (1000 for metres -> mm)");
   app.add_option("--centerline", load.centerline_path, "use this centerline JSON instead of extracting one");

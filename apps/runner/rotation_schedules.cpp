@@ -34,9 +34,7 @@ ScheduleController::Rule rule_of(const std::string& name) {
   if (name == "spin+0.3") return spin(0.3);
   if (name == "spin+1") return spin(1.0);
   if (name == "wiggle") return [](const Observation&, int k) { return std::sin(0.3 * k); };
-  std::string known;
-  for (const std::string& n : rotation_schedule_names()) known += (known.empty() ? "" : ", ") + n;
-  throw std::invalid_argument("unknown rotation schedule '" + name + "' (known: " + known + ")");
+  throw std::invalid_argument("unknown rotation schedule '" + name + "' (known: " + rotation_schedule_list() + ")");
 }
 
 }  // namespace
@@ -45,6 +43,12 @@ const std::vector<std::string>& rotation_schedule_names() {
   static const std::vector<std::string> names = {"aim-0.95", "aim-0.7", "aim-0.95-ccw", "spin-1",
                                                  "spin-0.3", "spin+0.3", "spin+1",      "wiggle"};
   return names;
+}
+
+std::string rotation_schedule_list() {
+  std::string list;
+  for (const std::string& n : rotation_schedule_names()) list += (list.empty() ? "" : ", ") + n;
+  return list;
 }
 
 std::unique_ptr<Controller> make_rotation_schedule(const std::string& name) {

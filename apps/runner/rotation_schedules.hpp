@@ -20,6 +20,9 @@ namespace gw {
 // wiggle               a = sin(0.3 k) at env step k, sweeping back and forth
 const std::vector<std::string>& rotation_schedule_names();
 
+// The names joined for messages and --help: "aim-0.95, aim-0.7, ..., wiggle".
+std::string rotation_schedule_list();
+
 // A fresh controller (schedules with a step counter start at 0). Throws std::invalid_argument naming
 // the known schedules for an unknown name.
 std::unique_ptr<Controller> make_rotation_schedule(const std::string& name);

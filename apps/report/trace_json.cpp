@@ -57,6 +57,15 @@ std::string trace_to_json(const EpisodeTrace& t, int indent) {
     frames["action"].push_back(number(t.action[i]));
     frames["agent_in_control"].push_back(static_cast<bool>(t.agent_in_control[i]));
   }
+  if (!t.observation.empty()) {
+    frames["observation"] = json::array();
+    for (const auto& o : t.observation) {
+      json row = json::array();
+      for (double v : o) row.push_back(number(v));
+      frames["observation"].push_back(std::move(row));
+    }
+  }
+  if (!t.goal.empty()) frames["goal"] = t.goal;
   json shapes = json::array();
   for (std::size_t s = 0; s < t.wire_shapes.size(); ++s) {
     json shape;
@@ -82,6 +91,7 @@ std::string trace_to_json(const EpisodeTrace& t, int indent) {
   j["outcome"] = t.outcome;
   j["detail"] = t.detail;
   j["num_frames"] = t.time_s.size();
+  if (!t.observation_names.empty()) j["observation_names"] = t.observation_names;
   j["frames"] = std::move(frames);
   j["wire_shapes"] = std::move(shapes);
   // Replace invalid UTF-8 in free text (detail may quote a file name) instead of throwing.
@@ -112,6 +122,16 @@ EpisodeTrace trace_from_json(const std::string& text, const std::string& origin)
     for (const auto& v : array_field(frames, "tip")) t.tip.push_back(read_point(v));
     for (const auto& v : array_field(frames, "action")) t.action.push_back(read_number(v));
     for (const auto& v : array_field(frames, "agent_in_control")) t.agent_in_control.push_back(v.get<bool>());
+    if (frames.contains("observation")) {
+      t.observation_names = field(j, "observation_names").get<std::vector<std::string>>();
+      for (const auto& row : array_field(frames, "observation")) {
+        if (!row.is_array()) throw std::runtime_error("each observation must be an array");
+        std::vector<double> o;
+        for (const auto& v : row) o.push_back(read_number(v));
+        t.observation.push_back(std::move(o));
+      }
+    }
+    if (frames.contains("goal")) t.goal = array_field(frames, "goal").get<std::vector<int>>();
     bool frames_known = true;
     for (const auto& shape : array_field(j, "wire_shapes")) {
       std::vector<Eigen::Vector3d> points;

@@ -17,6 +17,14 @@ void check_trace(const EpisodeTrace& t, const std::string& what) {
   same(t.tip.size(), "tip");
   same(t.action.size(), "action");
   same(t.agent_in_control.size(), "agent_in_control");
+  if (!t.observation.empty()) {
+    same(t.observation.size(), "observation");
+    for (const auto& o : t.observation)
+      if (o.size() != t.observation_names.size())
+        fail("an observation has " + std::to_string(o.size()) + " values but there are " +
+             std::to_string(t.observation_names.size()) + " observation names");
+  }
+  if (!t.goal.empty()) same(t.goal.size(), "goal");
   if (std::find(kTraceOutcomes.begin(), kTraceOutcomes.end(), t.outcome) == kTraceOutcomes.end()) {
     std::string valid;
     for (const auto& o : kTraceOutcomes) valid += (valid.empty() ? "" : ", ") + o;

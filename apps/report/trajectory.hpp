@@ -22,6 +22,12 @@ struct EpisodeTrace {
   std::vector<Eigen::Vector3d> tip;
   std::vector<double> action;
   std::vector<bool> agent_in_control;
+  // The observation at each frame (what the controller is shown for the next action; names in
+  // observation_names) and which goal was current (0-based; the last one is the target).
+  // Optional: empty, or one entry per frame. They let a person see why a policy turned.
+  std::vector<std::vector<double>> observation;
+  std::vector<std::string> observation_names;
+  std::vector<int> goal;
 
   // Inserted wire polyline (proximal to distal), every k-th frame (k chosen by the
   // caller) and the last frame. wire_shape_frame[i] is the frame index (into time_s) of

@@ -1,5 +1,6 @@
 #include "apps/runner/run_episode.hpp"
 
+#include "engine/task/observation.hpp"
 #include "engine/wire/wire_queries.hpp"
 
 namespace gw {
@@ -11,6 +12,8 @@ void record_frame(const NavigationTask& task, const EpisodeState& s, double acti
   trace.tip.push_back(s.tip);
   trace.action.push_back(action);
   trace.agent_in_control.push_back(in_control);
+  trace.observation.emplace_back(s.obs.begin(), s.obs.end());
+  trace.goal.push_back(s.goal);
   if (options.wire_shape_every > 0 && frame % options.wire_shape_every == 0) {
     trace.wire_shapes.push_back(inserted_node_positions(task.wire, s.wire));
     trace.wire_shape_frame.push_back(frame);
@@ -50,6 +53,7 @@ EpisodeTrace run_episode(const NavigationTask& task, int anatomy, int target_id,
   trace.controller = controller.name();
   trace.target_id = s.target_id;
   trace.seed = seed;
+  for (const char* name : observation_names()) trace.observation_names.emplace_back(name);
   int frame = 0;
   record_frame(task, s, 0.0, s.in_control, frame, options, trace);
   for (;;) {

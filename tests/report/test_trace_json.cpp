@@ -41,6 +41,12 @@ EpisodeTrace rich_trace() {
   t.action[6] = std::numeric_limits<double>::quiet_NaN();
   t.wire_shapes.insert(t.wire_shapes.begin(), {{0, 0, 0}, {0.5, 1.25, -3}});
   t.wire_shape_frame.insert(t.wire_shape_frame.begin(), 10);
+  t.observation_names = {"lambda_t", "omega"};
+  for (std::size_t i = 0; i < t.time_s.size(); ++i) {
+    t.observation.push_back({1.0 - 0.01 * static_cast<double>(i), -0.5});
+    t.goal.push_back(i < 20 ? 0 : 1);
+  }
+  t.observation[2][1] = std::numeric_limits<double>::quiet_NaN();
   return t;
 }
 
@@ -72,6 +78,11 @@ TEST_CASE("trajectory JSON round-trips every field", "[report][json]") {
     for (std::size_t i = 0; i < t.wire_shapes[s].size(); ++i) CHECK(same_point(r.wire_shapes[s][i], t.wire_shapes[s][i]));
   }
   CHECK(r.wire_shape_frame == t.wire_shape_frame);
+  CHECK(r.observation_names == t.observation_names);
+  CHECK(r.goal == t.goal);
+  REQUIRE(r.observation.size() == t.observation.size());
+  for (std::size_t i = 0; i < t.observation.size(); ++i)
+    for (std::size_t k = 0; k < 2; ++k) CHECK(same_number(r.observation[i][k], t.observation[i][k]));
 
   // The file is plain JSON other tools read: schema, null for NaN, columns.
   const auto j = nlohmann::json::parse(slurp(path));
@@ -80,6 +91,9 @@ TEST_CASE("trajectory JSON round-trips every field", "[report][json]") {
   CHECK(j["num_frames"] == t.time_s.size());
   CHECK(j["frames"]["tip"][5][0].is_null());
   CHECK(j["wire_shapes"][1]["frame"] == 38);
+  CHECK(j["observation_names"][1] == "omega");
+  CHECK(j["frames"]["observation"][2][1].is_null());
+  CHECK(j["frames"]["goal"][25] == 1);
   CHECK(j["wire_shapes"][1]["time_s"].get<double>() == Approx(3.8));
   CHECK_FALSE(fs::exists(path + ".tmp"));
 }
@@ -94,8 +108,28 @@ TEST_CASE("trajectory JSON: unknown wire-shape frames stay unknown", "[report][j
   CHECK(j["wire_shapes"][0]["frame"].is_null());
 }
 
+TEST_CASE("trajectory JSON: observations and goals are optional", "[report][json]") {
+  const EpisodeTrace t = test::box_trace();
+  REQUIRE(t.observation.empty());
+  const auto j = nlohmann::json::parse(trace_to_json(t));
+  CHECK_FALSE(j["frames"].contains("observation"));
+  CHECK_FALSE(j["frames"].contains("goal"));
+  const EpisodeTrace r = trace_from_json(trace_to_json(t));
+  CHECK(r.observation.empty());
+  CHECK(r.goal.empty());
+}
+
 TEST_CASE("inconsistent traces are refused with the problem named", "[report][json]") {
-  EpisodeTrace t = test::box_trace();
+  EpisodeTrace t = rich_trace();
+  t.observation.pop_back();
+  CHECK_THROWS_WITH(check_trace(t), Contains("observation has"));
+  t = rich_trace();
+  t.observation[4].push_back(0.0);
+  CHECK_THROWS_WITH(check_trace(t), Contains("an observation has 3 values but there are 2 observation names"));
+  t = rich_trace();
+  t.goal.pop_back();
+  CHECK_THROWS_WITH(check_trace(t), Contains("goal has"));
+  t = test::box_trace();
   t.tip.pop_back();
   CHECK_THROWS_WITH(check_trace(t, "episode 3"), Contains("episode 3") && Contains("tip has 38 frames but time_s has 39"));
   t = test::box_trace();

@@ -14,6 +14,7 @@
 #include "apps/runner/rotation_schedules.hpp"
 #include "apps/runner/run_episode.hpp"
 #include "engine/task/navigation_task.hpp"
+#include "engine/task/observation.hpp"
 #include "engine/wire/wire_params.hpp"
 
 namespace fs = std::filesystem;
@@ -153,6 +154,13 @@ TEST_CASE("run_batch: threads give the same episodes as one thread, and the summ
     CHECK(serial[k].tip.back() == threaded[k].tip.back());  // bit for bit
     CHECK(serial[k].action == threaded[k].action);
     CHECK(serial[k].wire_shapes.size() >= 3);
+    // What the controller saw, frame by frame: the observation carries the action just applied.
+    REQUIRE(serial[k].observation.size() == serial[k].time_s.size());
+    REQUIRE(serial[k].observation_names.size() == serial[k].observation[0].size());
+    CHECK(serial[k].observation_names[gw::obs_index::kAction] == std::string("action"));
+    for (std::size_t f = 1; f < serial[k].time_s.size(); ++f)
+      CHECK(serial[k].observation[f][gw::obs_index::kAction] == serial[k].action[f]);
+    CHECK(serial[k].goal == std::vector<int>(serial[k].time_s.size(), 0));
   }
   // different seeds start with a different wire rotation
   CHECK(serial[0].tip.back() != serial[1].tip.back());

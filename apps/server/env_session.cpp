@@ -87,6 +87,7 @@ std::string spec_json(const NavigationTask& task) {
                                     {"min_rad", c.roll_disturbance_min_rad},
                                     {"max_rad", c.roll_disturbance_max_rad}}},
               {"control_radius_mm", c.control_radius_mm},
+              {"intermediate_target_mm", c.intermediate_target_mm},
               {"success_radius_mm", c.success_radius_mm}}}};
   return j.dump();
 }

@@ -68,8 +68,13 @@ Course make_course(const CenterlineGraph& graph, const std::vector<Polyline>& br
     const double next = course.bifurcations[k + 1].arc;
     const double here = course.bifurcations[k].arc;
     course.goal_arc.push_back(std::min(here + config.control_radius_mm, 0.5 * (here + next)));
+    const double intermediate = config.intermediate_target_mm > 0
+                                    ? std::min(here + config.intermediate_target_mm, course.line.length)
+                                    : course.goal_arc.back();
+    course.lambda_arc.push_back(std::max(intermediate, course.goal_arc.back()));
   }
   course.goal_arc.push_back(course.line.length);
+  course.lambda_arc.push_back(course.line.length);
   switch (config.control_mode) {
     case ControlMode::kAlways: course.policy_always = true; break;
     case ControlMode::kNearBifurcation: course.policy_always = false; break;

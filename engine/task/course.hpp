@@ -34,6 +34,9 @@ struct Course {
   // centre in the correct branch (where the policy hands control back); the last goal is the
   // target itself (so a single-bifurcation pattern has exactly one goal, as in the paper's training).
   std::vector<double> goal_arc;
+  // Per goal, the arc lambda is measured to: goal_arc, or the intermediate target
+  // TaskConfig::intermediate_target_mm past the bifurcation (the last one is the target).
+  std::vector<double> lambda_arc;
   bool policy_always = true;                       // resolved ControlMode for this course
 };
 

@@ -96,7 +96,7 @@ void observe(const NavigationTask& task, EpisodeState& s, bool first) {
     ++s.goal;
     goal_changed = true;
   }
-  s.lambda_mm = std::max(0.0, course.goal_arc[static_cast<size_t>(s.goal)] - tip_arc);
+  s.lambda_mm = std::max(0.0, course.lambda_arc[static_cast<size_t>(s.goal)] - tip_arc);
   if (goal_changed) s.lambda0_mm = std::max(s.lambda_mm, 1e-3);
   o[obs_index::kLambdaPrev] = goal_changed ? lambda_ratio(c, s) : previous_ratio;
   o[obs_index::kLambda] = lambda_ratio(c, s);

@@ -25,7 +25,7 @@ struct EpisodeState {
   Observation obs{};
   int goal = 0;                    // index into course->goal_arc
   double lambda0_mm = 1.0;         // lambda when the current goal became current
-  double lambda_mm = 0.0;          // tip-to-goal distance along the centerline
+  double lambda_mm = 0.0;          // tip-to-goal distance along the centerline (to course->lambda_arc)
   double progress_mm = 0.0;        // arc length of the tip's projection on the course
   double course_distance_mm = 0.0; // distance from the tip to the course centerline
   double best_progress_mm = 0.0;   // for the stuck test

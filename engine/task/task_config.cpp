@@ -29,6 +29,7 @@ void check_task_config(const TaskConfig& c) {
   require(c.success_radius_mm > 0, "success_radius_mm", "> 0");
   require(c.wrong_branch_depth_mm >= 0, "wrong_branch_depth_mm", ">= 0");
   require(c.control_radius_mm > 0, "control_radius_mm", "> 0");
+  require(c.intermediate_target_mm >= 0, "intermediate_target_mm", ">= 0");
   require(c.max_steps >= 0, "max_steps", ">= 0 (0 = automatic)");
   require(c.max_steps_path_factor >= 1, "max_steps_path_factor", ">= 1");
   require(c.stuck_steps >= 1, "stuck_steps", ">= 1");

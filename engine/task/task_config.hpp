@@ -53,6 +53,14 @@ struct TaskConfig {
   double wrong_branch_depth_mm = 4.0;    // failure once the tip is this far along a wrong child and
                                          // closer to it than to the correct continuation
   double control_radius_mm = 20.0;       // paper: the policy acts within 20 mm of a bifurcation centre
+  double intermediate_target_mm = 50.0;  // trees: lambda (observation and reward) is measured to an
+                                         // intermediate target this far past each bifurcation centre along
+                                         // the course (capped at the final target); the goal still advances
+                                         // at the hand-over point above. 50 mm = the mean length of the
+                                         // training patterns' target branches (29-72 mm), so lambda meets a
+                                         // bifurcation in the range training showed it (never near 0 before
+                                         // the hand-over, where a policy has learnt that rolling is free).
+                                         // 0 = at the hand-over point (before 2026-11-28)
   ControlMode control_mode = ControlMode::kAuto;
   int max_steps = 0;                     // step limit; 0 = auto: path_length * factor / advance per step
   double max_steps_path_factor = 2.5;    //   (+ 50), i.e. 2.5x the steps a wire that never buckles needs

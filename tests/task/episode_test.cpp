@@ -131,6 +131,22 @@ TEST_CASE("trees: the action applies only within the control radius of a bifurca
   CHECK(was_in_control);
 }
 
+TEST_CASE("trees: lambda runs to the intermediate target past the hand-over point", "[task][episode]") {
+  const gw::NavigationTask task = free_space_task(gwtest::two_level_tree());
+  gw::EpisodeState s = gw::reset_episode(task, 0, 3, 1);
+  const gw::Course& c = *s.course;
+  REQUIRE(c.bifurcations.size() == 2);
+  REQUIRE(c.lambda_arc[0] > c.goal_arc[0]);
+  CHECK(s.lambda0_mm == Approx(c.lambda_arc[0] - s.progress_mm));
+  for (int k = 0; k < 100 && !s.done; ++k) {
+    const gw::StepOutcome out = gw::step_episode(task, s, 0.0);
+    CAPTURE(k, s.goal, s.progress_mm);
+    CHECK(s.lambda_mm == Approx(std::max(0.0, c.lambda_arc[static_cast<std::size_t>(s.goal)] - s.progress_mm)));
+    CHECK(out.obs[gw::obs_index::kLambda] == Approx(std::min(s.lambda_mm / s.lambda0_mm, 4.0)));
+    if (s.goal == 0) CHECK(s.lambda_mm >= c.lambda_arc[0] - c.goal_arc[0] - 1e-9);  // never near 0 before it
+  }
+}
+
 TEST_CASE("an episode ends: stepping after the end is refused", "[task][episode]") {
   gw::TaskConfig config;
   config.max_steps = 3;

@@ -125,9 +125,21 @@ TEST_CASE("course through a tree: one intermediate goal per bifurcation", "[task
     const gw::Course c = gw::make_course(g, lines, t.id, config);
     CHECK(c.goal_arc.size() == c.bifurcations.size());
     CHECK(c.goal_arc.back() == Approx(c.line.length));
+    REQUIRE(c.lambda_arc.size() == c.goal_arc.size());
+    CHECK(c.lambda_arc.back() == Approx(c.line.length));  // the final target
     if (c.bifurcations.size() == 2) {
       CHECK_FALSE(c.policy_always);  // auto: trees hand control only near bifurcations
       CHECK(c.goal_arc[0] == Approx(c.bifurcations[0].arc + config.control_radius_mm));
+      // lambda runs to the intermediate target past the hand-over, capped at the final target
+      CHECK(c.lambda_arc[0] ==
+            Approx(std::min(c.bifurcations[0].arc + config.intermediate_target_mm, c.line.length)));
+      CHECK(c.lambda_arc[0] > c.goal_arc[0]);
+      gw::TaskConfig at_hand_over = config;
+      at_hand_over.intermediate_target_mm = 0;
+      CHECK(gw::make_course(g, lines, t.id, at_hand_over).lambda_arc[0] == Approx(c.goal_arc[0]));
+      gw::TaskConfig short_target = config;
+      short_target.intermediate_target_mm = 5;  // never before the hand-over point
+      CHECK(gw::make_course(g, lines, t.id, short_target).lambda_arc[0] == Approx(c.goal_arc[0]));
     }
   }
   config.control_mode = gw::ControlMode::kAlways;

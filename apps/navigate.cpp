@@ -39,6 +39,7 @@ int main(int argc, char** argv) {
   gw::NavigationAnatomyOptions load;
   int episodes = 1, threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   std::uint64_t seed = 0;
+  double intermediate_target_mm = gw::TaskConfig{}.intermediate_target_mm;
   bool json = false, list = false, no_cache = false;
   app.add_option("--anatomy,anatomy", anatomy_path, "vessel surface (.stl, .obj, .ply), millimetres")->required();
   app.add_option("--target", target, "target number, 'all' or 'random' (see --list)");
@@ -52,6 +53,9 @@ int main(int argc, char** argv) {
   app.add_option("--scale", load.scale, "multiply coordinates (1000 for metres -> mm)");
   app.add_option("--centerline", load.centerline_path, "use this centerline JSON instead of extracting one");
   app.add_option("--wire", wire_path, "guidewire parameter JSON (default: 0.014\" coronary wire)");
+  app.add_option("--intermediate-target", intermediate_target_mm,
+                 "trees: lambda is measured to a point this many mm past each bifurcation (0 = at the hand-over, "
+                 "20 mm past it)");
   app.add_option("--threads", threads, "episodes run in parallel");
   app.add_option("--out", out_dir, "write trajectories (JSON, VTK .vtp) and biplane PNGs here");
   app.add_flag("--json", json, "print one JSON summary on stdout");
@@ -72,6 +76,7 @@ int main(int argc, char** argv) {
     auto make_controller = [&] { return gw::make_controller(controller_kind, policy); };
     gw::TaskConfig config;
     make_controller()->adapt(config);  // an actor trained on the paper's omega gets the paper's omega
+    config.intermediate_target_mm = intermediate_target_mm;
 
     const gw::WireParams wire = wire_path.empty() ? gw::default_wire_params() : gw::load_wire_params(wire_path);
     const gw::NavigationTask task = gw::make_navigation_task(config, wire, {nav.anatomy});
@@ -100,6 +105,7 @@ int main(int argc, char** argv) {
                              {"seconds", nav.centerline_seconds},
                              {"targets", nav.anatomy.graph.targets.size()},
                              {"bifurcations", nav.anatomy.graph.bifurcations.size()}};
+    summary["intermediate_target_mm"] = intermediate_target_mm;
     summary["wall_time_s"] = wall;
     if (!out_dir.empty()) {
       const std::vector<std::string> title = {nav.anatomy.name + " | " + summary["controller"].get<std::string>() +

@@ -85,6 +85,7 @@ def test_navigate_runs_the_exported_actor(smoke_run):
     (["--target", "7", "--controller", "push-only"], "target 7 does not exist"),
     (["--target", "x", "--controller", "push-only"], "'x' is not a number"),
     (["--policy", "/nonexistent/actor.json"], "/nonexistent/actor.json"),
+    (["--intermediate-target", "-5", "--controller", "push-only"], "intermediate_target_mm"),
 ])
 def test_navigate_errors_are_one_clear_line(args, fragment):
     t1 = REPO / "anatomies" / "train" / "t1_straight_y" / "t1_straight_y"

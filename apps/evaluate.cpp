@@ -29,6 +29,8 @@ int main(int argc, char** argv) {
   app.add_option("--centerlines", centerlines, "extract (zero-shot pipeline) | truth");
   app.add_option("--episode-scale", o.episode_scale, "multiply every row's episode count");
   app.add_option("--seed", o.seed, "episode k of a row uses seed S+k");
+  app.add_option("--intermediate-target", o.intermediate_target_mm,
+                 "trees: lambda is measured to a point this many mm past each bifurcation (0 = at the hand-over)");
   app.add_option("--threads", o.threads, "episodes run in parallel");
   app.add_option("--rows", rows_filter, "only rows whose name contains this text");
   app.add_option("--out", out_dir, "folder for results.md and results.json");

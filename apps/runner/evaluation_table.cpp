@@ -107,7 +107,9 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
         nav.anatomy.name = name;
         anatomies.push_back(std::move(nav.anatomy));
       }
-      const NavigationTask default_task = make_navigation_task(TaskConfig{}, default_wire_params(), anatomies);
+      TaskConfig base_config;
+      base_config.intermediate_target_mm = o.intermediate_target_mm;
+      const NavigationTask default_task = make_navigation_task(base_config, default_wire_params(), anatomies);
       const std::vector<EpisodeRequest> requests = row_requests(default_task, episodes, o.seed);
       TraceOptions trace;
       trace.wire_shape_every = 0;
@@ -120,7 +122,7 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
           r["notes"].push_back("SAC column: the shipped policy (trained on the 4 training anatomies), not one "
                                "trained on sensitivity/base only as in the paper");
         auto make = [&] { return make_controller(kind, policy); };
-        TaskConfig config;
+        TaskConfig config = base_config;
         make()->adapt(config);  // an actor trained on the paper's omega (obs/1) is evaluated with it
         std::optional<NavigationTask> adapted;
         if (config.omega_plane != default_task.config.omega_plane)
@@ -141,6 +143,7 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
   return {{"rows", out_rows},
           {"settings",
            {{"policy", o.policy}, {"base_policy", o.base_policy}, {"seed", o.seed},
+            {"intermediate_target_mm", o.intermediate_target_mm},
             {"centerlines", o.extract_centerlines ? "extracted (CGAL MCF)" : "ground truth"},
             {"episode_scale", o.episode_scale},
             {"reachability_seeds", o.reachability_seeds}}}};

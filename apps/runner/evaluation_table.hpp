@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/task/task_config.hpp"
+
 namespace gw {
 
 struct EvaluationRow {
@@ -33,6 +35,7 @@ struct EvaluationOptions {
   // Targets that no controller of a row reached are probed with the rotation schedules
   // (reachability.hpp) from this many seeds each; 0 = do not probe.
   int reachability_seeds = 2;
+  double intermediate_target_mm = TaskConfig{}.intermediate_target_mm;  // trees (task_config.hpp)
 };
 
 // Runs the rows and returns {"rows": [{name, episodes, paper, results: {controller: summary}, notes,

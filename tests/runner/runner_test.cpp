@@ -225,6 +225,11 @@ TEST_CASE("evaluation table: the paper's rows and a Markdown table that says why
   CHECK(e["rows"][0]["notes"].size() == 1);
   CHECK(e["rows"][0]["reachability"].empty());
   CHECK(e["rows"][1]["skipped"].get<std::string>().find("no_such_anatomy") != std::string::npos);
+  CHECK(e["settings"]["intermediate_target_mm"] == gw::TaskConfig{}.intermediate_target_mm);
+  gw::EvaluationOptions bad = o;
+  bad.intermediate_target_mm = -1;  // the task refuses it; the row says so instead of the run dying
+  const nlohmann::json refused = gw::run_evaluation({row}, bad);
+  CHECK(refused["rows"][0]["skipped"].get<std::string>().find("intermediate_target_mm") != std::string::npos);
   const std::string md = gw::evaluation_to_markdown(e);
   CHECK(md.find("| training anatomies | 2 | — |") != std::string::npos);
   CHECK(md.find("| 95% |") != std::string::npos);

@@ -68,10 +68,9 @@ Course make_course(const CenterlineGraph& graph, const std::vector<Polyline>& br
     const double next = course.bifurcations[k + 1].arc;
     const double here = course.bifurcations[k].arc;
     course.goal_arc.push_back(std::min(here + config.control_radius_mm, 0.5 * (here + next)));
-    const double intermediate = config.intermediate_target_mm > 0
-                                    ? std::min(here + config.intermediate_target_mm, course.line.length)
-                                    : course.goal_arc.back();
-    course.lambda_arc.push_back(std::max(intermediate, course.goal_arc.back()));
+    // Never before the hand-over point (so 0 = lambda to the hand-over point), never past the target.
+    course.lambda_arc.push_back(
+        std::max(course.goal_arc.back(), std::min(here + config.intermediate_target_mm, course.line.length)));
   }
   course.goal_arc.push_back(course.line.length);
   course.lambda_arc.push_back(course.line.length);

@@ -43,6 +43,10 @@ int main(int argc, char** argv) {
                  "training robustness: per-episode probability of an unannounced proximal roll of 45-180 deg "
                  "(0 = the paper's task)")
       ->capture_default_str();
+  app.add_option("--random-start", config.random_start_probability,
+                 "training: per-episode probability of starting part-way along the access vessel (wire pushed "
+                 "without rotation to a random depth before the first bifurcation; 0 = the paper's task)")
+      ->capture_default_str();
   app.add_option("--step-time-limit", options.session.step_time_limit_s,
                  "seconds one env step may run before it is cut off with an error (0 = none)")
       ->capture_default_str();

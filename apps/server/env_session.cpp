@@ -86,6 +86,8 @@ std::string spec_json(const NavigationTask& task) {
               {"roll_disturbance", {{"probability", c.roll_disturbance_probability},
                                     {"min_rad", c.roll_disturbance_min_rad},
                                     {"max_rad", c.roll_disturbance_max_rad}}},
+              {"random_start", {{"probability", c.random_start_probability},
+                                {"margin_mm", c.random_start_margin_mm}}},
               {"control_radius_mm", c.control_radius_mm},
               {"intermediate_target_mm", c.intermediate_target_mm},
               {"success_radius_mm", c.success_radius_mm}}}};

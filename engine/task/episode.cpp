@@ -133,6 +133,33 @@ double disturbance_rate(const TaskConfig& c, const EpisodeState& s) {
   return on ? s.disturbance_sign * c.max_rotation_rad_per_s : 0.0;
 }
 
+// TaskConfig::random_start_probability: drawn after every other reset draw, and only when enabled,
+// so episodes without it are unchanged. Pushes without rotation (as the push-only stretch between two
+// control zones does) until the tip is at the drawn arc, then observes afresh so lambda_0 starts there.
+void draw_random_start(const NavigationTask& task, SplitMix64& rng, EpisodeState& s) {
+  const TaskConfig& c = task.config;
+  if (c.random_start_probability <= 0 || rng.uniform() >= c.random_start_probability) return;
+  const Course& course = *s.course;
+  const double first_centre = course.bifurcations.empty() ? course.line.length : course.bifurcations.front().arc;
+  const double from = s.progress_mm;
+  const double to = from + (first_centre - c.random_start_margin_mm - from) * rng.uniform();
+  if (to <= from) return;
+  const VesselScene* scene = task.anatomies[static_cast<size_t>(s.anatomy)].scene.get();
+  const Control push{c.push_mm_per_s, 0.0};
+  // A wire that buckles instead of advancing stops the pre-push (3x the steps a free wire needs).
+  const int max_steps = static_cast<int>(std::ceil(3.0 * (to - from) / (env_dt(c) * c.push_mm_per_s))) + 10;
+  for (int k = 0; k < max_steps && s.progress_mm < to; ++k) {
+    for (int f = 0; f < c.frame_skip; ++f) {
+      const StepReport report = step(task.wire, scene, push, s.wire);
+      if (!report.ok)
+        throw std::runtime_error("random start: physics diverged while pushing the wire to its start: " +
+                                 report.problem);
+    }
+    observe(task, s, true);
+  }
+  s.pre_pushed_mm = s.progress_mm - from;
+}
+
 }  // namespace
 
 EpisodeState reset_episode(const NavigationTask& task, int anatomy, int target_id, std::uint64_t seed) {
@@ -172,6 +199,7 @@ EpisodeState reset_episode(const NavigationTask& task, int anatomy, int target_i
                                 : static_cast<int>(std::ceil(c.max_steps_path_factor * s.course->line.length / advance)) + 50;
   draw_roll_disturbance(c, advance, rng, s);
   observe(task, s, true);
+  draw_random_start(task, rng, s);
   s.obs[obs_index::kAction] = 0.0;
   s.best_progress_mm = s.progress_mm;
   return s;

@@ -37,6 +37,7 @@ struct EpisodeState {
   int disturbance_from_step = 0;
   int disturbance_steps = 0;
   double disturbance_sign = 0.0;
+  double pre_pushed_mm = 0.0;      // how far reset pushed the tip along the course (random start; else 0)
   int steps = 0;
   int max_steps = 0;
   bool done = false;

@@ -40,6 +40,9 @@ void check_task_config(const TaskConfig& c) {
   require(c.roll_disturbance_min_rad > 0 && c.roll_disturbance_min_rad <= c.roll_disturbance_max_rad,
           "roll_disturbance_min_rad", "> 0 and <= roll_disturbance_max_rad");
   require(c.roll_disturbance_max_rad <= 6.283185307179586, "roll_disturbance_max_rad", "<= 2 pi");
+  require(c.random_start_probability >= 0 && c.random_start_probability <= 1, "random_start_probability",
+          "in [0, 1]");
+  require(c.random_start_margin_mm >= 0, "random_start_margin_mm", ">= 0");
   require(c.roll_disturbance_probability == 0 || c.max_rotation_rad_per_s > 0, "max_rotation_rad_per_s",
           "> 0 when roll_disturbance_probability > 0");
 }

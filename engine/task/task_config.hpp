@@ -76,6 +76,15 @@ struct TaskConfig {
   double roll_disturbance_probability = 0.0;
   double roll_disturbance_min_rad = 0.7853981633974483;  // |angle| uniform in [pi/4, pi]: from a
   double roll_disturbance_max_rad = 3.141592653589793;   // nudge to the worst (a half turn)
+  // A start part-way along the access vessel with this probability: at reset the wire is pushed,
+  // without rotation, until its tip is a random distance along the course (uniform between the
+  // inlet start and random_start_margin_mm before the first bifurcation centre), and lambda_0 is
+  // measured from there. In trees control is handed over 10-20 mm before the next bifurcation with
+  // lambda just reset to 1 and whatever roll the last bifurcation left; inlet starts show a policy
+  // lambda = 1 only 50-66 mm before its bifurcation (shipped policy, coronary T4 seed 21: handed
+  // the tip 13 mm before the centre at omega -0.8, it rolled to +0.5 and took the wrong branch).
+  double random_start_probability = 0.0;
+  double random_start_margin_mm = 8.0;
 };
 
 // Throws std::invalid_argument naming the first field out of range.

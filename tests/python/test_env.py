@@ -183,3 +183,26 @@ def test_roll_disturbance_is_a_server_setting_and_changes_the_episode(server_bin
     finally:
         plain.close()
         rolled.close()
+
+
+def test_random_start_is_a_server_setting_and_starts_part_way_on_the_wall_anatomy(server_bin):
+    # Off unless asked for; at probability 1 resets push the wire (against the real wall) part-way
+    # to the bifurcation, lambda is measured from there (ratio 1) and the episode runs on as usual.
+    plain = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1})
+    pushed = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1}, server_args=["--random-start", "1"])
+    try:
+        assert plain.spec_reply["task"]["random_start"]["probability"] == 0.0
+        assert pushed.spec_reply["task"]["random_start"]["probability"] == 1.0
+        deeper = 0
+        for seed in range(6):
+            _, a = plain.reset(seed=seed)
+            obs, b = pushed.reset(seed=seed)
+            assert obs[6] == 1.0 and obs[7] == 1.0
+            deeper += b["progress_mm"] > a["progress_mm"] + 5.0
+            assert b["progress_mm"] < 60.0 - 8.0 + 1.0   # t1's bifurcation centre is 60 mm along
+            obs, reward, terminated, truncated, info = pushed.step(np.zeros(1, dtype=np.float32))
+            assert obs[6] < 1.0 and not truncated and np.isfinite(reward)
+        assert deeper >= 4
+    finally:
+        plain.close()
+        pushed.close()

@@ -232,3 +232,45 @@ TEST_CASE("roll disturbance: seeded, off by default, twists the proximal end by 
   config.roll_disturbance_probability = 1.5;
   CHECK_THROWS_WITH(gw::check_task_config(config), Catch::Contains("roll_disturbance_probability"));
 }
+
+TEST_CASE("random start: seeded, off by default, pushes the tip part-way to the bifurcation with lambda from there",
+          "[task][episode]") {
+  const gw::NavigationTask plain = free_space_task(gwtest::y_graph());
+  gw::TaskConfig config;
+  config.random_start_probability = 1.0;
+  const gw::NavigationTask random = free_space_task(gwtest::y_graph(), config);
+  const double centre = random.courses[0][0].bifurcations.front().arc;  // 40 mm
+  const gw::EpisodeState p = gw::reset_episode(plain, 0, 1, 7);
+  CHECK(p.pre_pushed_mm == 0.0);
+  // Same seed: the same start roll and tilt, then the push.
+  int pushed = 0;
+  double deepest = 0.0;
+  for (std::uint64_t seed = 0; seed < 30; ++seed) {
+    const gw::EpisodeState base = gw::reset_episode(plain, 0, 1, seed);
+    const gw::EpisodeState s = gw::reset_episode(random, 0, 1, seed);
+    CHECK(s.start_rotation_rad == base.start_rotation_rad);
+    CHECK(s.steps == 0);
+    CHECK(s.progress_mm == Approx(base.progress_mm + s.pre_pushed_mm).margin(1e-9));
+    // No further than one env step past the deepest start, margin before the centre.
+    CHECK(s.progress_mm <= centre - config.random_start_margin_mm + 1.0);
+    // lambda_0 measured from the start: ratio 1, history = present.
+    CHECK(s.obs[gw::obs_index::kLambda] == 1.0);
+    CHECK(s.obs[gw::obs_index::kLambdaPrev] == 1.0);
+    CHECK(s.lambda0_mm == Approx(s.course->lambda_arc[0] - s.progress_mm).margin(1e-9));
+    // Pushed without rotation: the proximal roll is the start roll.
+    CHECK(s.wire.proximal_rotation_rad == base.wire.proximal_rotation_rad);
+    pushed += s.pre_pushed_mm > 1.0;
+    deepest = std::max(deepest, s.progress_mm);
+    const gw::EpisodeState again = gw::reset_episode(random, 0, 1, seed);
+    CHECK(same_bits(again.obs, s.obs));
+  }
+  CHECK(pushed > 20);
+  CHECK(deepest > 0.6 * centre);
+  // The episode goes on from there as any other.
+  gw::EpisodeState s = gw::reset_episode(random, 0, 1, 3);
+  const gw::StepOutcome out = gw::step_episode(random, s, 0.5);
+  CHECK(out.obs[gw::obs_index::kLambda] < 1.0);
+  CHECK(out.obs[gw::obs_index::kLambdaPrev] == 1.0);
+  config.random_start_probability = -0.1;
+  CHECK_THROWS_WITH(gw::check_task_config(config), Catch::Contains("random_start_probability"));
+}

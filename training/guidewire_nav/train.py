@@ -38,6 +38,8 @@ class Settings:
     reward_omega_slope: float = 5.0        #   centre 0.1, slope 5 (engine/task/reward.hpp says why to change)
     roll_disturbance: float = 0.0          # per-episode probability of an unannounced 45-180 deg proximal
                                            #   roll (robustness; 0 = the paper's task, task_config.hpp says why)
+    random_start: float = 0.0              # per-episode probability of starting part-way to the bifurcation
+                                           #   (trees hand control over near one; task_config.hpp says why)
     init_model: str = ""                   # fine-tune: start from this SB3 SAC zip (e.g. a checkpoint)
     total_steps: int = 150_000             # environment steps over all workers
     envs: int = 2                          # parallel servers (SubprocVecEnv); 1 = in-process DummyVecEnv
@@ -89,7 +91,8 @@ def git_commit() -> str:
 
 def server_args(s: Settings) -> list[str]:
     return ["--omega-plane", s.omega_plane, "--reward-omega-centre", repr(s.reward_omega_centre),
-            "--reward-omega-slope", repr(s.reward_omega_slope), "--roll-disturbance", repr(s.roll_disturbance)]
+            "--reward-omega-slope", repr(s.reward_omega_slope), "--roll-disturbance", repr(s.roll_disturbance),
+            "--random-start", repr(s.random_start)]
 
 
 def make_env_fn(s: Settings, rank: int, eval_env: bool = False):

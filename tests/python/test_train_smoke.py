@@ -123,15 +123,16 @@ def test_wall_time_budget_stops_training_and_still_exports(tmp_path):
 
 def test_fine_tuning_starts_from_the_given_networks(smoke_run, tmp_path):
     """--init-model continues from a saved SAC (here the smoke run's final model) with the roll
-    disturbance on: the exported actor starts as that model's actor, not as a fresh network."""
+    disturbance and random starts on: the exported actor starts as that model's actor, not as a fresh
+    network, and the settings reach the servers."""
     import torch
     from stable_baselines3 import SAC
     from guidewire_nav import train
 
     start = SAC.load(smoke_run / "final_model.zip", device="cpu")
     argv = ["--out", str(tmp_path), "--anatomies", "t1_straight_y", "--total-steps", "60", "--learning-starts", "1000",
-            "--envs", "1", "--eval-episodes", "0", "--roll-disturbance", "0.5", "--no-progress",
-            "--init-model", str(smoke_run / "final_model.zip")]
+            "--envs", "1", "--eval-episodes", "0", "--roll-disturbance", "0.5", "--random-start", "0.5",
+            "--no-progress", "--init-model", str(smoke_run / "final_model.zip")]
     assert train.main(argv) == 0
     tuned = SAC.load(tmp_path / "final_model.zip", device="cpu")
     # learning_starts > steps: no gradient step was taken, so the networks are the loaded ones.
@@ -139,3 +140,5 @@ def test_fine_tuning_starts_from_the_given_networks(smoke_run, tmp_path):
         assert torch.equal(a, b)
     settings = json.loads((tmp_path / "settings.json").read_text())
     assert settings["roll_disturbance"] == 0.5 and settings["init_model"].endswith("final_model.zip")
+    assert settings["random_start"] == 0.5
+    assert train.server_args(train.Settings(random_start=0.5))[-2:] == ["--random-start", "0.5"]

@@ -124,7 +124,7 @@ def test_wall_time_budget_stops_training_and_still_exports(tmp_path):
 def test_fine_tuning_starts_from_the_given_networks(smoke_run, tmp_path):
     """--init-model continues from a saved SAC (here the smoke run's final model) with the roll
     disturbance and random starts on: the exported actor starts as that model's actor, not as a fresh
-    network, and the settings reach the servers."""
+    network; both settings are recorded and server_args passes random starts on to the servers."""
     import torch
     from stable_baselines3 import SAC
     from guidewire_nav import train

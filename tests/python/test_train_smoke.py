@@ -142,3 +142,38 @@ def test_fine_tuning_starts_from_the_given_networks(smoke_run, tmp_path):
     assert settings["roll_disturbance"] == 0.5 and settings["init_model"].endswith("final_model.zip")
     assert settings["random_start"] == 0.5
     assert train.server_args(train.Settings(random_start=0.5))[-2:] == ["--random-start", "0.5"]
+
+
+def test_fine_tuning_from_an_exported_actor_keeps_it_while_the_critics_learn(smoke_run, tmp_path):
+    """--init-actor loads an exported actor JSON (the shipped policy has no critic) into a fresh SAC;
+    with --actor-freeze-steps past the run's end the critics take gradient steps and the actor's mean
+    is still exactly the JSON's, and the exported actor.json equals the one it started from."""
+    import torch
+    from stable_baselines3 import SAC
+    from guidewire_nav import train
+
+    argv = ["--out", str(tmp_path), "--anatomies", "t1_straight_y", "--total-steps", "80", "--learning-starts", "20",
+            "--batch-size", "16", "--envs", "1", "--eval-episodes", "0", "--no-progress",
+            "--init-actor", str(smoke_run / "actor.json"), "--init-log-std", "-1.5", "--actor-freeze-steps", "1000"]
+    assert train.main(argv) == 0
+    tuned = SAC.load(tmp_path / "final_model.zip", device="cpu")
+    assert tuned.actor.log_std.bias.detach().numpy().tolist() == [-1.5]  # frozen: still the set value
+    started = json.loads((smoke_run / "actor.json").read_text())["layers"]
+    ended = json.loads((tmp_path / "actor.json").read_text())["layers"]
+    for a, b in zip(started, ended):
+        np.testing.assert_array_equal(a["weight"], b["weight"])
+        np.testing.assert_array_equal(a["bias"], b["bias"])
+    # the critics did learn: the target network, a copy at the start, now trails the critic (Polyak)
+    moved = [not torch.equal(a, b) for a, b in zip(tuned.critic.parameters(), tuned.critic_target.parameters())]
+    assert all(moved)
+    settings = json.loads((tmp_path / "settings.json").read_text())
+    assert settings["init_actor"].endswith("actor.json") and settings["actor_freeze_steps"] == 1000
+
+
+def test_init_actor_refuses_a_network_of_another_shape(smoke_run, tmp_path):
+    from guidewire_nav import train
+
+    argv = ["--out", str(tmp_path), "--anatomies", "t1_straight_y", "--total-steps", "10", "--envs", "1",
+            "--eval-episodes", "0", "--no-progress", "--net-arch", "64,64", "--init-actor", str(smoke_run / "actor.json")]
+    with pytest.raises(ValueError, match=r"do not match the model's .*--net-arch"):
+        train.main(argv)

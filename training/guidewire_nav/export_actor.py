@@ -133,6 +133,42 @@ def export_sac_actor(model, path, obs_layout: str = "unspecified", vecnormalize=
     return d
 
 
+def load_actor_json(model, path, log_std: float = -2.3) -> dict:
+    """The inverse of the export, for fine-tuning a shipped actor whose critic was not kept: copy the
+    JSON's layers into `model`'s actor (latent_pi + mu) and return the dictionary. The JSON holds only
+    the deterministic mean, so the log-std head is set to a constant `log_std` (zero weights): -2.3 gives
+    std ~0.1 before tanh, about what SAC's automatic entropy (target -1 for one action) settles at.
+    Refuses, naming the mismatch, an actor whose layer shapes, activations, action bounds or observation
+    normalisation differ from what `model` computes, rather than loading it half."""
+    import torch
+
+    d = json.loads(Path(path).read_text())
+    if d.get("format") != FORMAT:
+        raise ValueError(f"load_actor_json: {path}: format {d.get('format')!r}, expected {FORMAT!r}")
+    if d.get("obs_normalization"):
+        raise ValueError(f"load_actor_json: {path}: has observation normalisation; SB3's MlpPolicy has none")
+    actor = model.policy.actor
+    if actor.use_sde:
+        raise ValueError("load_actor_json: the model uses gSDE; its log-std is not a layer to set")
+    want = _actor_layers(actor)
+    have = d["layers"]
+    if [(l["shape"], l["activation"]) for l in have] != [(l["shape"], l["activation"]) for l in want]:
+        raise ValueError(f"load_actor_json: {path}: layers {[(l['shape'], l['activation']) for l in have]} do not "
+                         f"match the model's {[(l['shape'], l['activation']) for l in want]} (check --net-arch)")
+    for key in ("low", "high"):
+        if not np.allclose(d["output"][key], getattr(model.action_space, key)):
+            raise ValueError(f"load_actor_json: {path}: action {key} {d['output'][key]} differs from the model's "
+                             f"{getattr(model.action_space, key).tolist()}")
+    linears = [m for m in actor.latent_pi if isinstance(m, nn.Linear)] + [actor.mu]
+    with torch.no_grad():
+        for layer, saved in zip(linears, have):
+            layer.weight.copy_(torch.tensor(saved["weight"]).reshape(saved["shape"]))
+            layer.bias.copy_(torch.tensor(saved["bias"]))
+        actor.log_std.weight.zero_()
+        actor.log_std.bias.fill_(log_std)
+    return d
+
+
 def main(argv=None) -> None:
     from stable_baselines3 import SAC
 

@@ -41,6 +41,10 @@ class Settings:
     random_start: float = 0.0              # per-episode probability of starting part-way to the bifurcation
                                            #   (trees hand control over near one; task_config.hpp says why)
     init_model: str = ""                   # fine-tune: start from this SB3 SAC zip (e.g. a checkpoint)
+    init_actor: str = ""                   # fine-tune: start the actor from an exported actor JSON (fresh critics)
+    init_log_std: float = -2.3             #   its log-std head (the JSON has only the mean): std ~0.1 before tanh
+    actor_freeze_steps: int = 0            # environment steps the actor (and entropy coefficient) stay fixed while
+                                           #   fresh critics learn its values; then ordinary SAC
     total_steps: int = 150_000             # environment steps over all workers
     envs: int = 2                          # parallel servers (SubprocVecEnv); 1 = in-process DummyVecEnv
     seed: int = 0
@@ -219,7 +223,30 @@ def main(argv=None) -> int:
     else:
         model = SAC("MlpPolicy", vec_env, ent_coef=s.ent_coef,
                     policy_kwargs={"net_arch": [int(n) for n in s.net_arch.split(",")]}, **sac_settings)
+    if s.init_actor:  # a shipped actor without its critics: only the mean is kept, the critics start fresh
+        from guidewire_nav.export_actor import load_actor_json
+
+        load_actor_json(model, s.init_actor, log_std=s.init_log_std)
     model.set_logger(configure(str(out / "logs"), ["csv", "tensorboard"]))
+
+    # --- actor freeze: a fresh critic's early gradients would undo a good actor before the critic knows
+    # its values, so the actor's and the entropy coefficient's optimisers skip their steps until then
+    # (critic updates go on; the buffer fills with the actor's own stochastic actions once
+    # learning_starts is past, so set --learning-starts low when fine-tuning from a good actor).
+    class ActorFreeze(BaseCallback):
+        def _frozen_optimisers(self):
+            return [o for o in (self.model.actor.optimizer, self.model.ent_coef_optimizer) if o is not None]
+
+        def _on_training_start(self) -> None:
+            if s.actor_freeze_steps > 0:
+                for o in self._frozen_optimisers():
+                    o.step = lambda *args, **kwargs: None  # instance attribute shadows Optimizer.step
+
+        def _on_step(self) -> bool:
+            if self.num_timesteps >= s.actor_freeze_steps:
+                for o in self._frozen_optimisers():
+                    o.__dict__.pop("step", None)  # the class's step again
+            return True
 
     # --- periodic evaluation: success rate over seeded episodes; keeps the best actor
     evals: list[dict] = []
@@ -254,7 +281,7 @@ def main(argv=None) -> int:
             return True
 
     eval_cb = EvalCallback()
-    callbacks = CallbackList([eval_cb, CheckpointCallback(max(1, s.checkpoint_every // s.envs),
+    callbacks = CallbackList([ActorFreeze(), eval_cb, CheckpointCallback(max(1, s.checkpoint_every // s.envs),
                                                           str(out / "checkpoints"), name_prefix="sac")])
 
     # --- learn

@@ -154,7 +154,8 @@ def test_fine_tuning_from_an_exported_actor_keeps_it_while_the_critics_learn(smo
 
     argv = ["--out", str(tmp_path), "--anatomies", "t1_straight_y", "--total-steps", "80", "--learning-starts", "20",
             "--batch-size", "16", "--envs", "1", "--eval-episodes", "0", "--no-progress",
-            "--init-actor", str(smoke_run / "actor.json"), "--init-log-std", "-1.5", "--actor-freeze-steps", "1000"]
+            "--init-actor", str(smoke_run / "actor.json"), "--init-log-std", "-1.5", "--actor-freeze-steps", "1000",
+            "--actor-learning-rate", "3e-6"]
     assert train.main(argv) == 0
     tuned = SAC.load(tmp_path / "final_model.zip", device="cpu")
     assert tuned.actor.log_std.bias.detach().numpy().tolist() == [-1.5]  # frozen: still the set value
@@ -168,6 +169,9 @@ def test_fine_tuning_from_an_exported_actor_keeps_it_while_the_critics_learn(smo
     assert all(moved)
     settings = json.loads((tmp_path / "settings.json").read_text())
     assert settings["init_actor"].endswith("actor.json") and settings["actor_freeze_steps"] == 1000
+    # the actor keeps its own rate through SB3's per-update schedule; the critics keep the shared one
+    assert [g["lr"] for g in tuned.actor.optimizer.param_groups] == [3e-6]
+    assert [g["lr"] for g in tuned.critic.optimizer.param_groups] == [settings["learning_rate"]]
 
 
 def test_init_actor_refuses_a_network_of_another_shape(smoke_run, tmp_path):

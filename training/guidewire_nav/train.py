@@ -50,6 +50,8 @@ class Settings:
     seed: int = 0
     # SAC, paper defaults
     learning_rate: float = 1e-4
+    actor_learning_rate: float = 0.0       # the actor's own rate (0 = learning_rate); fine-tuning: Adam moves every
+                                           #   weight ~lr per step however small the gradient, see main()
     batch_size: int = 256
     buffer_size: int = 10_000
     gamma: float = 0.98
@@ -212,16 +214,27 @@ def main(argv=None) -> int:
     vec_env = VecMonitor(vec_env, str(out / "monitor"), info_keywords=("success",))
     eval_env = make_env_fn(s, 0, eval_env=True)()
 
-    # --- SAC with the paper's settings
+    # --- SAC with the paper's settings; the actor may get its own learning rate. SB3 resets every
+    # optimiser to the one schedule before each update, so the actor's rate is set after that. Why: Adam
+    # steps each weight by ~lr whatever the gradient's size, so a fresh critic's noisy gradients move a
+    # good actor as fast as useful ones would (2,000 updates at 1e-4 were seen to cut the shipped actor's
+    # successes on the validation trees from 98 to 69 of 110: policy/trained/README.md).
+    class SACWithActorRate(SAC):
+        def _update_learning_rate(self, optimizers) -> None:
+            super()._update_learning_rate(optimizers)
+            if s.actor_learning_rate > 0:
+                for group in self.actor.optimizer.param_groups:
+                    group["lr"] = s.actor_learning_rate
+
     sac_settings = dict(
         learning_rate=s.learning_rate, buffer_size=s.buffer_size, batch_size=s.batch_size, gamma=s.gamma,
         learning_starts=s.learning_starts, train_freq=s.train_freq, gradient_steps=s.gradient_steps,
         seed=s.seed, device=s.device, verbose=0,
     )
     if s.init_model:  # fine-tuning: the saved networks (and learned entropy coefficient), a fresh buffer
-        model = SAC.load(s.init_model, env=vec_env, **sac_settings)
+        model = SACWithActorRate.load(s.init_model, env=vec_env, **sac_settings)
     else:
-        model = SAC("MlpPolicy", vec_env, ent_coef=s.ent_coef,
+        model = SACWithActorRate("MlpPolicy", vec_env, ent_coef=s.ent_coef,
                     policy_kwargs={"net_arch": [int(n) for n in s.net_arch.split(",")]}, **sac_settings)
     if s.init_actor:  # a shipped actor without its critics: only the mean is kept, the critics start fresh
         from guidewire_nav.export_actor import load_actor_json

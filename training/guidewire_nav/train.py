@@ -235,7 +235,7 @@ def main(argv=None) -> int:
         model = SACWithActorRate.load(s.init_model, env=vec_env, **sac_settings)
     else:
         model = SACWithActorRate("MlpPolicy", vec_env, ent_coef=s.ent_coef,
-                    policy_kwargs={"net_arch": [int(n) for n in s.net_arch.split(",")]}, **sac_settings)
+                                 policy_kwargs={"net_arch": [int(n) for n in s.net_arch.split(",")]}, **sac_settings)
     if s.init_actor:  # a shipped actor without its critics: only the mean is kept, the critics start fresh
         from guidewire_nav.export_actor import load_actor_json
 

@@ -181,3 +181,23 @@ def test_init_actor_refuses_a_network_of_another_shape(smoke_run, tmp_path):
             "--eval-episodes", "0", "--no-progress", "--net-arch", "64,64", "--init-actor", str(smoke_run / "actor.json")]
     with pytest.raises(ValueError, match=r"do not match the model's .*--net-arch"):
         train.main(argv)
+
+
+def test_score_checkpoints_exports_and_scores_a_run(smoke_run, capsys):
+    _app("navigate")
+    from guidewire_nav import score_checkpoints
+
+    assert score_checkpoints.main([str(smoke_run), "--steps", "100", "--episodes", "1", "--train-episode-scale", "0",
+                                   "--threads", "2"]) == 0
+    exported = json.loads((smoke_run / "scored" / "ckpt_100.json").read_text())
+    assert exported["obs_layout"] == "guidewire-nav/obs/2"  # the run's omega plane (settings.json)
+    report = json.loads((smoke_run / "scores.json").read_text())
+    s = report["scores"]["100"]
+    assert s["validation_episodes"] == 11  # 4 + 4 + 3 validation targets, one episode each
+    assert 0 <= s["validation_successes"] <= 11
+    assert s["validation_successes"] == sum(sum(t.values()) for t in s["validation"].values())
+    assert "| 100 |" in capsys.readouterr().out
+
+    # A checkpoint the run does not have is named, not a traceback.
+    assert score_checkpoints.main([str(smoke_run), "--steps", "12345", "--train-episode-scale", "0"]) == 1
+    assert "sac_12345_steps.zip: no such checkpoint" in capsys.readouterr().err

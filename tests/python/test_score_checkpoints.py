@@ -1,7 +1,6 @@
 """score_checkpoints runs actors through the C++ runtime on the validation trees and the training anatomies."""
 
 import json
-import os
 from pathlib import Path
 
 import pytest
@@ -13,10 +12,10 @@ SHIPPED = REPO / "policy" / "trained" / "sac_actor.json"
 
 
 def _built() -> None:
-    build = Path(os.environ.get("GW_BUILD_DIR", REPO / "build"))
-    for name in ("navigate", "evaluate"):
-        if not (build / "apps" / name).is_file():
-            pytest.skip(f"{name} not built; set GW_BUILD_DIR")
+    try:
+        score_checkpoints.app("navigate"), score_checkpoints.app("evaluate")
+    except FileNotFoundError as e:
+        pytest.skip(str(e))
 
 
 def test_shipped_actor_scores_on_validation_trees_and_training_anatomies(tmp_path):

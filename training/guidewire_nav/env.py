@@ -46,8 +46,7 @@ def find_server_binary() -> Path:
     explicit = os.environ.get("GW_SERVER_BIN")
     if explicit:
         return Path(explicit)
-    build = Path(os.environ.get("GW_BUILD_DIR", guidewire_nav.BUILD_DIR))
-    return build / "apps" / "guidewire-server"
+    return guidewire_nav.app_path("guidewire-server")
 
 
 def _die_with_parent() -> None:  # pragma: no cover - runs in the child before exec

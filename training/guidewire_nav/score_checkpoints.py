@@ -37,17 +37,18 @@ LAYOUTS = {"approach": "guidewire-nav/obs/2", "correct_branch": "guidewire-nav/o
 
 def app(name: str) -> Path:
     """A C++ executable from the build folder ($GW_BUILD_DIR, default <repo>/build)."""
-    path = Path(os.environ.get("GW_BUILD_DIR", guidewire_nav.BUILD_DIR)) / "apps" / name
+    path = guidewire_nav.app_path(name)
     if not path.exists():
         raise FileNotFoundError(f"{path}: not built (cmake --build build), or set GW_BUILD_DIR")
     return path
 
 
-def run_json(cmd: list[str]) -> dict:
+def run(cmd: list[str]) -> str:
+    """stdout of `cmd` run from the repository root; a failure raises with what the command said."""
     out = subprocess.run(cmd, capture_output=True, text=True, cwd=guidewire_nav.REPO_ROOT)
     if out.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} failed: {out.stderr.strip() or out.stdout.strip()}")
-    return json.loads(out.stdout)
+    return out.stdout
 
 
 # --- The actors to score -------------------------------------------------------------------------------------
@@ -82,9 +83,9 @@ def score_validation(actor: Path, episodes: int, seed: int, threads: int) -> dic
     for mesh, targets in VALIDATION:
         name = Path(mesh).stem
         for target in targets:
-            summary = run_json([str(app("navigate")), "--anatomy", mesh, "--target", str(target), "--policy",
+            summary = json.loads(run([str(app("navigate")), "--anatomy", mesh, "--target", str(target), "--policy",
                                 str(actor), "--episodes", str(episodes), "--seed", str(seed), "--threads",
-                                str(threads), "--json"])
+                                str(threads), "--json"]))
             scores.setdefault(name, {})[target] = int(summary["outcomes"]["success"])
     return scores
 
@@ -92,10 +93,9 @@ def score_validation(actor: Path, episodes: int, seed: int, threads: int) -> dic
 def score_training(actor: Path, episode_scale: float, seed: int, threads: int) -> tuple[int, int]:
     """(successes, episodes) on the training anatomies' row of `evaluate`."""
     with tempfile.TemporaryDirectory() as tmp:
-        subprocess.run([str(app("evaluate")), "--rows", "training anatomies", "--controllers", "policy", "--policy",
-                        str(actor), "--episode-scale", str(episode_scale), "--seed", str(seed), "--threads",
-                        str(threads), "--reachability-seeds", "0", "--out", tmp],
-                       check=True, capture_output=True, cwd=guidewire_nav.REPO_ROOT)
+        run([str(app("evaluate")), "--rows", "training anatomies", "--controllers", "policy", "--policy", str(actor),
+             "--episode-scale", str(episode_scale), "--seed", str(seed), "--threads", str(threads),
+             "--reachability-seeds", "0", "--out", tmp])
         row = json.loads((Path(tmp) / "results.json").read_text())["rows"][0]
     if "skipped" in row:
         raise RuntimeError(f"evaluate skipped the training row: {row['skipped']}")
@@ -151,7 +151,7 @@ def main(argv: list[str] | None = None) -> int:
                 "training_successes": trained[0], "training_episodes": trained[1]}
             print(f"[score] {label}: {scores[label]['validation_successes']}/{scores[label]['validation_episodes']} "
                   f"validation, {trained[0]}/{trained[1]} training", file=sys.stderr)
-    except (FileNotFoundError, RuntimeError, subprocess.CalledProcessError) as e:
+    except (FileNotFoundError, RuntimeError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 1
 

@@ -174,6 +174,49 @@ def test_fine_tuning_from_an_exported_actor_keeps_it_while_the_critics_learn(smo
     assert [g["lr"] for g in tuned.critic.optimizer.param_groups] == [settings["learning_rate"]]
 
 
+def _visited_observations(steps: int = 60) -> np.ndarray:
+    """Observations of one t1_straight_y episode under random actions (the states an anchor sees)."""
+    from guidewire_nav.env import GuidewireEnv
+
+    env = GuidewireEnv(anatomies="t1_straight_y")
+    try:
+        obs, _ = env.reset(seed=7)
+        seen = [obs]
+        for _ in range(steps):
+            obs, _, terminated, truncated, _ = env.step(env.action_space.sample())
+            seen.append(obs)
+            if terminated or truncated:
+                obs, _ = env.reset()
+        return np.array(seen, dtype=np.float32)
+    finally:
+        env.close()
+
+
+def test_anchor_holds_a_fine_tuned_actor_near_the_one_it_started_from(smoke_run, tmp_path):
+    """At a fast actor rate (3e-3, no freeze) a fine-tuned actor leaves the one it started from;
+    --anchor-weight pulls its actions back towards the start's on replayed states, so on the states an
+    episode visits it moves much less than without the anchor."""
+    import torch
+    from stable_baselines3 import SAC
+    from guidewire_nav import train
+    from guidewire_nav.train import anchor_loss
+
+    common = ["--anatomies", "t1_straight_y", "--total-steps", "300", "--learning-starts", "20",
+              "--batch-size", "32", "--envs", "1", "--eval-episodes", "0", "--no-progress",
+              "--init-actor", str(smoke_run / "actor.json"), "--actor-learning-rate", "3e-3"]
+    assert train.main(["--out", str(tmp_path / "free")] + common) == 0
+    assert train.main(["--out", str(tmp_path / "anchored"), "--anchor-weight", "100"] + common) == 0
+
+    start = SAC.load(smoke_run / "best_model.zip", device="cpu").actor  # what actor.json was exported from
+    obs = torch.as_tensor(_visited_observations())
+    with torch.no_grad():
+        moved = {name: anchor_loss(SAC.load(tmp_path / name / "final_model.zip", device="cpu").actor, start, obs).item()
+                 for name in ("free", "anchored")}
+    assert moved["free"] > 1e-3, moved  # the fast rate does move an unanchored actor
+    assert moved["anchored"] < 0.1 * moved["free"], moved  # measured 3e-5 against 1e-2
+    assert json.loads((tmp_path / "anchored" / "settings.json").read_text())["anchor_weight"] == 100
+
+
 def test_init_actor_refuses_a_network_of_another_shape(smoke_run, tmp_path):
     from guidewire_nav import train
 

@@ -15,6 +15,7 @@ training anatomies, a random anatomy and target per episode; converged at ~120k 
 from __future__ import annotations
 
 import argparse
+import copy
 import csv
 import dataclasses
 import json
@@ -45,6 +46,8 @@ class Settings:
     init_log_std: float = -2.3             #   its log-std head (the JSON has only the mean): std ~0.1 before tanh
     actor_freeze_steps: int = 0            # environment steps the actor (and entropy coefficient) stay fixed while
                                            #   fresh critics learn its values; then ordinary SAC
+    anchor_weight: float = 0.0             # fine-tune: adds weight * |a(s) - a_start(s)|^2 (deterministic actions on
+                                           #   replayed states) to the actor loss, tying it to the actor it started from
     total_steps: int = 150_000             # environment steps over all workers
     envs: int = 2                          # parallel servers (SubprocVecEnv); 1 = in-process DummyVecEnv
     seed: int = 0
@@ -139,6 +142,13 @@ def evaluate(model, env, episodes: int, seed: int) -> dict:
         returns.append(ret)
     return {"episodes": episodes, "success_rate": successes / episodes, "mean_length": float(np.mean(lengths)),
             "mean_return": float(np.mean(returns)), "outcomes": outcomes}
+
+
+def anchor_loss(actor, reference, obs):
+    """Mean squared distance between two SB3 actors' deterministic (tanh-squashed) actions on `obs`.
+    Measured on actions, not on the pre-tanh means, so a saturated action may keep any mean beyond it:
+    only a change of behaviour costs."""
+    return ((actor(obs, deterministic=True) - reference(obs, deterministic=True)) ** 2).sum(dim=-1).mean()
 
 
 def plot_curve(out: Path, monitor_rows: list[dict], evals: list[dict], eval_label: str = "deterministic evaluation") -> None:
@@ -246,19 +256,37 @@ def main(argv=None) -> int:
     # its values, so the actor's and the entropy coefficient's optimisers skip their steps until then
     # (critic updates go on; the buffer fills with the actor's own stochastic actions once
     # learning_starts is past, so set --learning-starts low when fine-tuning from a good actor).
-    class ActorFreeze(BaseCallback):
-        def _frozen_optimisers(self):
-            return [o for o in (self.model.actor.optimizer, self.model.ent_coef_optimizer) if o is not None]
+    # --- anchor: the training anatomies alone do not hold a fine-tuned actor's zero-shot behaviour in
+    # place (every update redrew it: policy/trained/README.md), so each actor step may also pull the
+    # actions on a replayed batch back towards the starting actor's. SB3's SAC.train() calls
+    # zero_grad, actor_loss.backward, step; the anchor's gradient is added in between, in step.
+    reference = copy.deepcopy(model.actor).requires_grad_(False) if s.anchor_weight > 0 else None
+
+    class ActorUpdates(BaseCallback):
+        frozen = s.actor_freeze_steps > 0
 
         def _on_training_start(self) -> None:
-            if s.actor_freeze_steps > 0:
-                for o in self._frozen_optimisers():
-                    o.step = lambda *args, **kwargs: None  # instance attribute shadows Optimizer.step
+            actor_opt, ent_opt = self.model.actor.optimizer, self.model.ent_coef_optimizer
+
+            def actor_step(*args, **kwargs):
+                if self.frozen:
+                    return None
+                if reference is not None:
+                    obs = self.model.replay_buffer.sample(s.batch_size).observations
+                    loss = anchor_loss(self.model.actor, reference, obs)
+                    (s.anchor_weight * loss).backward()
+                    self.logger.record("train/anchor_loss", loss.item())
+                return type(actor_opt).step(actor_opt, *args, **kwargs)
+
+            def ent_step(*args, **kwargs):
+                return None if self.frozen else type(ent_opt).step(ent_opt, *args, **kwargs)
+
+            actor_opt.step = actor_step  # instance attributes shadow Optimizer.step
+            if ent_opt is not None:
+                ent_opt.step = ent_step
 
         def _on_step(self) -> bool:
-            if self.num_timesteps >= s.actor_freeze_steps:
-                for o in self._frozen_optimisers():
-                    o.__dict__.pop("step", None)  # the class's step again
+            self.frozen = self.num_timesteps < s.actor_freeze_steps
             return True
 
     # --- periodic evaluation: success rate over seeded episodes; keeps the best actor
@@ -294,7 +322,7 @@ def main(argv=None) -> int:
             return True
 
     eval_cb = EvalCallback()
-    callbacks = CallbackList([ActorFreeze(), eval_cb, CheckpointCallback(max(1, s.checkpoint_every // s.envs),
+    callbacks = CallbackList([ActorUpdates(), eval_cb, CheckpointCallback(max(1, s.checkpoint_every // s.envs),
                                                           str(out / "checkpoints"), name_prefix="sac")])
 
     # --- learn

@@ -3,21 +3,20 @@ exported actor equal to SB3's deterministic action through the C++ runtime, and 
 an episode with it (the path from training to the product, end to end)."""
 
 import json
-import os
 import subprocess
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from guidewire_nav import app_path
 from guidewire_nav.env import find_server_binary
 
 REPO = Path(__file__).resolve().parents[2]
 
 
 def _app(name: str) -> Path:
-    build = Path(os.environ.get("GW_BUILD_DIR", REPO / "build"))
-    path = build / "apps" / name
+    path = app_path(name)
     if not path.is_file():
         pytest.skip(f"{name} not built ({path}); set GW_BUILD_DIR")
     return path

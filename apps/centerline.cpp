@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "centerline/extract/centerline_cache.hpp"
+#include "centerline/graph/inlet_ambiguity.hpp"
 #include "centerline/extract/target_table.hpp"
 #include "centerline/graph/centerline_graph.hpp"
 
@@ -54,6 +55,8 @@ int main(int argc, char** argv) {
     bool hit = false;
     const gw::CenterlineGraph graph = gw::cached_extract_centerline(path, scale, options, cache, &stats, &hit);
     for (const auto& w : stats.warnings) std::cerr << "warning: " << path << ": " << w << "\n";
+    if (!options.inlet)
+      if (const std::string w = gw::inlet_ambiguity(graph); !w.empty()) std::cerr << "warning: " << path << ": " << w << "\n";
     if (verbose) {
       if (hit) std::cerr << "centerline: " << path << ": from cache\n";
       else

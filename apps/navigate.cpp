@@ -68,6 +68,7 @@ int main(int argc, char** argv) {
     if (!inlet_text.empty()) load.inlet = parse_point(inlet_text);
     load.use_cache = !no_cache;
     const gw::NavigationAnatomy nav = gw::load_navigation_anatomy(anatomy_path, load);
+    if (!nav.inlet_warning.empty()) std::cerr << "warning: " << anatomy_path << ": " << nav.inlet_warning << "\n";
     if (list) {
       std::cout << gw::format_target_table(nav.anatomy.graph);
       return 0;
@@ -101,6 +102,9 @@ int main(int argc, char** argv) {
     summary["anatomy"] = anatomy_path;
     summary["controller"] = controller_kind == "policy" ? "sac-policy" : controller_kind;
     if (controller_kind == "policy") summary["policy"] = policy;
+    const Eigen::Vector3d& inlet = nav.anatomy.graph.inlet.position;
+    summary["inlet"] = {{"source", nav.inlet_source}, {"position", {inlet.x(), inlet.y(), inlet.z()}}};
+    if (!nav.inlet_warning.empty()) summary["inlet"]["warning"] = nav.inlet_warning;
     summary["centerline"] = {{"source", nav.centerline_source},
                              {"seconds", nav.centerline_seconds},
                              {"targets", nav.anatomy.graph.targets.size()},

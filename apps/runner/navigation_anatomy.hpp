@@ -14,7 +14,7 @@ namespace gw {
 
 struct NavigationAnatomyOptions {
   double scale = 1.0;                     // mesh units -> mm
-  std::optional<Eigen::Vector3d> inlet;   // picks the inlet terminal (else the widest one)
+  std::optional<Eigen::Vector3d> inlet;   // picks the inlet terminal (else the sidecar's, else the widest)
   std::string centerline_path;            // non-empty: use this graph instead of extracting
   bool use_cache = true;
 };
@@ -25,8 +25,14 @@ struct NavigationAnatomy {
   bool centerline_from_cache = false;
   double centerline_seconds = 0.0;        // extraction (or cache read) time
   std::string centerline_source;          // "extracted" | "cache" | the JSON path
+  std::string inlet_source;               // "--inlet" | the sidecar truth JSON | "widest end" | the centerline JSON
+  std::string inlet_warning;              // non-empty when the widest-end guess is doubtful (inlet_ambiguity)
 };
 
+// Inlet: options.inlet if set; else the inlet of a ground-truth sidecar STEM.truth.json next to
+// the mesh (the committed anatomies have one; it is the insertion point `evaluate` uses, so both
+// tools extract and number the same graph); else the widest vessel end, with inlet_warning set
+// when another end is nearly as wide.
 // Throws MeshError / std::runtime_error "<file>: <problem>" for unreadable or invalid meshes and
 // for a surface the extraction cannot handle; std::invalid_argument when the graph has no target.
 NavigationAnatomy load_navigation_anatomy(const std::string& mesh_path, const NavigationAnatomyOptions& options = {});

@@ -37,6 +37,31 @@ Terminal json_terminal(const json& j, const std::string& what) {
   return t;
 }
 
+using TerminalIt = std::vector<Terminal>::iterator;
+
+// Runs of [first, last) (already sorted by `key`) whose consecutive keys differ by at most
+// `tolerance`: chained, so a run may span more than the tolerance end to end.
+template <class Key>
+std::vector<std::pair<TerminalIt, TerminalIt>> tie_groups(TerminalIt first, TerminalIt last, double tolerance, Key key) {
+  std::vector<std::pair<TerminalIt, TerminalIt>> groups;
+  for (TerminalIt begin = first; begin != last;) {
+    TerminalIt end = begin + 1;
+    while (end != last && key(*end) - key(*(end - 1)) <= tolerance) ++end;
+    if (end - begin > 1) groups.emplace_back(begin, end);
+    begin = end;
+  }
+  return groups;
+}
+
+// Orders tied targets by x, ends within kTargetCoordinateTieMm of each other by y, then by z.
+void order_by_coordinates(TerminalIt first, TerminalIt last, int axis) {
+  auto coordinate = [axis](const Terminal& t) { return t.position[axis]; };
+  std::stable_sort(first, last, [&](const Terminal& a, const Terminal& b) { return coordinate(a) < coordinate(b); });
+  if (axis == 2) return;
+  for (auto& group : tie_groups(first, last, kTargetCoordinateTieMm, coordinate))
+    order_by_coordinates(group.first, group.second, axis + 1);
+}
+
 // Distance along the tree from the inlet to the distal end of `branch`.
 double path_length_to_end(const CenterlineGraph& g, int branch) {
   double length = 0.0;
@@ -63,10 +88,14 @@ void number_targets(CenterlineGraph& g) {
   }
   std::vector<double> length(g.branches.size());
   for (const auto& t : leaves) length[t.branch] = path_length_to_end(g, t.branch);
+  auto path_length = [&](const Terminal& t) { return length[t.branch]; };
+  // Exact order first, so that every later stage starts from the same sequence.
   std::sort(leaves.begin(), leaves.end(), [&](const Terminal& a, const Terminal& b) {
     return std::make_tuple(length[a.branch], a.position.x(), a.position.y(), a.position.z()) <
            std::make_tuple(length[b.branch], b.position.x(), b.position.y(), b.position.z());
   });
+  for (auto& group : tie_groups(leaves.begin(), leaves.end(), kTargetLengthTieMm, path_length))
+    order_by_coordinates(group.first, group.second, 0);
   for (size_t k = 0; k < leaves.size(); ++k) leaves[k].id = static_cast<int>(k + 1);
   g.targets = std::move(leaves);
 }

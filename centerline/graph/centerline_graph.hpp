@@ -12,8 +12,13 @@
 // Branches run distally (away from the inlet): a child's first point is its parent's
 // bifurcation centre. "inlet.direction" points into the vessel.
 // Targets are the distal ends of leaf branches, numbered 1..K by increasing path
-// length from the inlet (ties broken by x, then y, then z): a deterministic rule that
-// depends only on the geometry, not on mesh tessellation.
+// length from the inlet: a deterministic rule that depends only on the geometry, not on
+// mesh tessellation. Path lengths within 0.5 mm of each other are a tie (chained: 100.0,
+// 100.4 and 100.8 all tie), broken by the end's x, ends within 1 mm in x by y, then by z.
+// Why a tolerance: mirror-symmetric trees tie exactly, and extraction moves a path length
+// by up to ~0.1 mm against its truth (the sensitivity pattern's 119.34 / 119.36 mm swapped
+// when compared exactly); target ends move by less than 0.05 mm, so their coordinates are
+// a stable tie-break.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -75,6 +80,8 @@ double polyline_length(const std::vector<Eigen::Vector3d>& points);
 
 // Assigns target ids 1..K by the rule above (leaf branch ends sorted by path length).
 void number_targets(CenterlineGraph& graph);
+inline constexpr double kTargetLengthTieMm = 0.5;
+inline constexpr double kTargetCoordinateTieMm = 1.0;
 
 // JSON I/O. read throws std::runtime_error "<path>: <problem>" on a malformed file.
 std::string centerline_to_json(const CenterlineGraph& graph, int indent = -1);

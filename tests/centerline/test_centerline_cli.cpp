@@ -51,10 +51,16 @@ TEST_CASE("centerline command: graph JSON, target table, cache, errors", "[cente
   CHECK(list.output.find("1 target(s), 0 bifurcation(s)") != std::string::npos);
   CHECK(list.output.find("path (mm)") != std::string::npos);
 
-  const Run file = run("--anatomy " + mesh + " --out " + out + common);
+  const Run file = run("--anatomy " + mesh + " --inlet 0,0,0 --out " + out + common);
   CHECK(file.status == 0);
   CHECK(file.output.empty());
   CHECK(read_centerline(out).targets.size() == 1);
+
+  // Without --inlet the widest end is a guess, and a tube of constant radius has two: say so.
+  const Run guessed = run("--anatomy " + mesh + " --out " + out + common);
+  CHECK(guessed.status == 0);
+  CHECK(guessed.output.rfind("warning: " + mesh + ": the inlet was guessed as the widest vessel end", 0) == 0);
+  CHECK(guessed.output.find("pass --inlet x,y,z") != std::string::npos);
 
   const Run missing = run("--anatomy /nonexistent/vessel.stl" + common);
   CHECK(missing.status == 1);
@@ -73,7 +79,7 @@ TEST_CASE("centerline command: graph JSON, target table, cache, errors", "[cente
   CHECK(metres.output.find("error: " + mesh + ": vessel radius is about 0.00") != std::string::npos);
   CHECK(metres.output.find("--scale") != std::string::npos);
 
-  const Run bad_out = run("--anatomy " + mesh + " --out /nonexistent/dir/x.json" + common);
+  const Run bad_out = run("--anatomy " + mesh + " --inlet 0,0,0 --out /nonexistent/dir/x.json" + common);
   CHECK(bad_out.status == 1);
   CHECK(bad_out.output.find("/nonexistent/dir/x.json: cannot open for writing") != std::string::npos);
   CHECK(bad_out.output.rfind("error: ", 0) == 0);

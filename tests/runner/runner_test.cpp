@@ -47,6 +47,32 @@ fs::path scratch_dir(const std::string& name) {
 
 }  // namespace
 
+TEST_CASE("navigate's inlet: --inlet, else the mesh's truth sidecar, else the widest end with a warning", "[runner]") {
+  const gw::CenterlineGraph truth = gw::read_centerline(kT1 + ".truth.json");
+  gw::NavigationAnatomyOptions options;
+  options.use_cache = false;
+  // t1 is a Y of constant radius: its three ends are equally wide.
+  const gw::NavigationAnatomy beside_truth = gw::load_navigation_anatomy(kT1 + ".stl", options);
+  CHECK(beside_truth.inlet_source == kT1 + ".truth.json");
+  CHECK(beside_truth.inlet_warning.empty());
+  CHECK((beside_truth.anatomy.graph.inlet.position - truth.inlet.position).norm() < 1.0);
+  REQUIRE(beside_truth.anatomy.graph.targets.size() == truth.targets.size());
+  for (size_t k = 0; k < truth.targets.size(); ++k)
+    CHECK((beside_truth.anatomy.graph.targets[k].position - truth.targets[k].position).norm() < 1.0);
+
+  const fs::path alone = scratch_dir("inlet") / "t1_copy.stl";
+  fs::copy_file(kT1 + ".stl", alone);
+  const gw::NavigationAnatomy guessed = gw::load_navigation_anatomy(alone.string(), options);
+  CHECK(guessed.inlet_source == "widest end");
+  CHECK(guessed.inlet_warning.find("pass --inlet") != std::string::npos);
+
+  options.inlet = truth.inlet.position;
+  const gw::NavigationAnatomy given = gw::load_navigation_anatomy(alone.string(), options);
+  CHECK(given.inlet_source == "--inlet");
+  CHECK(given.inlet_warning.empty());
+  CHECK((given.anatomy.graph.inlet.position - truth.inlet.position).norm() < 1.0);
+}
+
 TEST_CASE("plan_episodes: targets and seeds of a batch", "[runner]") {
   const ShortT1 t1;
   REQUIRE(t1.nav.anatomy.graph.targets.size() == 2);

@@ -1,6 +1,5 @@
 """Parity: the C++ Eigen actor (policy-run) equals SB3's predict(deterministic=True) to 1e-5."""
 
-import os
 import subprocess
 from pathlib import Path
 
@@ -9,18 +8,15 @@ import numpy as np
 import pytest
 import torch
 
+from guidewire_nav import app_path
 from guidewire_nav.export_actor import export_sac_actor
-
-REPO = Path(__file__).resolve().parents[2]
 
 
 def _policy_run() -> Path:
-    candidates = [Path(os.environ["GW_BUILD_DIR"])] if os.environ.get("GW_BUILD_DIR") else []
-    candidates += [Path("/work/main/build"), REPO / "build"]
-    for c in candidates:
-        if (c / "apps" / "policy-run").is_file():
-            return c / "apps" / "policy-run"
-    pytest.skip(f"policy-run binary not built (looked in {[str(c) for c in candidates]})")
+    binary = app_path("policy-run")
+    if not binary.is_file():
+        pytest.skip(f"policy-run binary not built ({binary}; set GW_BUILD_DIR)")
+    return binary
 
 
 class BoxEnv(gym.Env):

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import subprocess
 import tempfile
 import time
@@ -19,9 +18,8 @@ import gymnasium as gym
 import numpy as np
 import torch
 
+from guidewire_nav import app_path
 from guidewire_nav.export_actor import export_sac_actor
-
-REPO = Path(__file__).resolve().parents[2]
 
 
 class _Env(gym.Env):
@@ -56,11 +54,11 @@ def _time(fn, calls: int) -> float:
     return (time.perf_counter() - t0) / calls * 1e9
 
 
-def _build_dir(arg: str | None) -> Path:
-    for c in [arg, os.environ.get("GW_BUILD_DIR"), "/work/main/build", str(REPO / "build")]:
-        if c and (Path(c) / "apps" / "bench-policy").is_file():
-            return Path(c)
-    raise SystemExit("bench_policy: bench-policy binary not found; build it or pass --build-dir")
+def _bench_binary(build_dir: str | None) -> Path:
+    binary = Path(build_dir) / "apps" / "bench-policy" if build_dir else app_path("bench-policy")
+    if not binary.is_file():
+        raise SystemExit(f"bench_policy: {binary} not found; build it, or pass --build-dir or set GW_BUILD_DIR")
+    return binary
 
 
 def main(argv=None) -> None:
@@ -100,7 +98,7 @@ def main(argv=None) -> None:
 
         json_path = Path(tmp) / "actor.json"
         export_sac_actor(model, json_path, obs_layout="bench")
-        binary = _build_dir(a.build_dir) / "apps" / "bench-policy"
+        binary = _bench_binary(a.build_dir)
         eigen_calls = max(a.calls, 100000)
         out = subprocess.run([str(binary), "--policy", str(json_path), "--calls", str(eigen_calls)],
                              capture_output=True, text=True, check=True)

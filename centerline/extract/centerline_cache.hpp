@@ -15,7 +15,7 @@
 namespace gw {
 
 // Bumped whenever the extraction changes its output.
-inline constexpr const char* kCenterlinePipelineVersion = "mcf-recentre-6";
+inline constexpr const char* kCenterlinePipelineVersion = "mcf-recentre-7";
 
 struct CacheOptions {
   bool enabled = true;

@@ -1,5 +1,7 @@
 #include "centerline/extract/mcf_skeleton.hpp"
 
+#include "centerline/extract/deterministic_heap.hpp"
+
 #include <CGAL/Random.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
@@ -24,33 +26,38 @@ RawSkeleton mcf_skeleton(const TriangleMesh& closed) {
       throw std::runtime_error("skeletonisation input is not a 2-manifold (face " + std::to_string(f) + ")");
   if (!CGAL::is_closed(sm)) throw std::runtime_error("skeletonisation input is not closed");
 
-  // The flow's Voronoi poles come from a Delaunay triangulation whose insertion order is
-  // shuffled with CGAL's global random generator; on symmetric (co-spherical) inputs the
-  // result depends on that order. Reseed so one mesh always gives one skeleton, whatever
-  // ran before in the process.
-  CGAL::get_default_random() = CGAL::Random(0);
-  Skeletonization::Skeleton skeleton;
-  Skeletonization mcf(sm);
-  mcf.contract_until_convergence();
-  mcf.convert_to_skeleton(skeleton);
-
+  // Heap addresses order the flow's edge collapses (deterministic_heap.hpp): allocate in a
+  // private region so one mesh always gives one skeleton, whatever ran before in the process.
+  DeterministicHeapScope heap;
   RawSkeleton out;
-  const auto count = boost::num_vertices(skeleton);
-  if (count < 2) throw std::runtime_error("skeletonisation produced no curve");
-  out.nodes.resize(count);
-  for (auto v : CGAL::make_range(vertices(skeleton))) {
-    SkeletonNode& node = out.nodes[v];
-    const Point& p = skeleton[v].point;
-    node.point = {p.x(), p.y(), p.z()};
-    node.surface_vertices = static_cast<int>(skeleton[v].vertices.size());
-    for (auto mv : skeleton[v].vertices) {
-      const Point& q = sm.point(mv);
-      node.centroid += Eigen::Vector3d(q.x(), q.y(), q.z());
+  {
+    // The flow's Voronoi poles come from a Delaunay triangulation whose insertion order is
+    // shuffled with CGAL's global random generator; on symmetric (co-spherical) inputs the
+    // result depends on that order. Reseed for the same reason.
+    CGAL::get_default_random() = CGAL::Random(0);
+    Skeletonization::Skeleton skeleton;
+    Skeletonization mcf(sm);
+    mcf.contract_until_convergence();
+    mcf.convert_to_skeleton(skeleton);
+
+    DeterministicHeapScope::Pause pause;  // the result outlives the region
+    const auto count = boost::num_vertices(skeleton);
+    if (count < 2) throw std::runtime_error("skeletonisation produced no curve");
+    out.nodes.resize(count);
+    for (auto v : CGAL::make_range(vertices(skeleton))) {
+      SkeletonNode& node = out.nodes[v];
+      const Point& p = skeleton[v].point;
+      node.point = {p.x(), p.y(), p.z()};
+      node.surface_vertices = static_cast<int>(skeleton[v].vertices.size());
+      for (auto mv : skeleton[v].vertices) {
+        const Point& q = sm.point(mv);
+        node.centroid += Eigen::Vector3d(q.x(), q.y(), q.z());
+      }
+      node.centroid = node.surface_vertices > 0 ? Eigen::Vector3d(node.centroid / node.surface_vertices) : node.point;
     }
-    node.centroid = node.surface_vertices > 0 ? Eigen::Vector3d(node.centroid / node.surface_vertices) : node.point;
+    for (auto e : CGAL::make_range(edges(skeleton)))
+      out.edges.emplace_back(static_cast<int>(source(e, skeleton)), static_cast<int>(target(e, skeleton)));
   }
-  for (auto e : CGAL::make_range(edges(skeleton)))
-    out.edges.emplace_back(static_cast<int>(source(e, skeleton)), static_cast<int>(target(e, skeleton)));
   return out;
 }
 

@@ -36,6 +36,7 @@ struct Region {
 constexpr int kMaxRegions = 64;
 std::atomic<Region*> g_regions[kMaxRegions];
 std::atomic<int> g_registered{0};  // regions in g_regions (live scopes and retained ones)
+std::atomic<int> g_slots_used{0};  // slots [0, this) may be non-null: delete scans only those
 std::atomic<int> g_retained{0};
 
 thread_local Region* t_allocating = nullptr;  // operator new serves from here (null: the heap)
@@ -88,8 +89,9 @@ bool region_free(void* p) {
     return true;
   }
   if (g_registered.load(std::memory_order_acquire) == 0) return false;
-  for (auto& slot : g_regions)
-    if (contains(slot.load(std::memory_order_acquire), p)) return true;  // another scope's block: kept
+  const int used = g_slots_used.load(std::memory_order_acquire);
+  for (int i = 0; i < used; ++i)
+    if (contains(g_regions[i].load(std::memory_order_acquire), p)) return true;  // another scope's block: kept
   return false;
 }
 
@@ -146,7 +148,7 @@ void release_free_pages(Region* r) {
 
 Region* map_region() {
   // Address space only (no memory is committed until touched); smaller if the system refuses.
-  for (std::size_t gib : {64, 16, 4, 1}) {
+  for (std::size_t gib : {4, 1}) {
     const std::size_t bytes = gib << 30;
     void* m = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
     if (m == MAP_FAILED) continue;
@@ -166,9 +168,12 @@ DeterministicHeapScope::DeterministicHeapScope() {
   if (t_owned) return;  // nested: the outer scope already serves this thread
   Region* r = map_region();
   if (!r) return;
-  for (auto& slot : g_regions) {
+  for (int i = 0; i < kMaxRegions; ++i) {
     Region* expected = nullptr;
-    if (slot.compare_exchange_strong(expected, r, std::memory_order_acq_rel)) {
+    if (g_regions[i].compare_exchange_strong(expected, r, std::memory_order_acq_rel)) {
+      int used = g_slots_used.load(std::memory_order_acquire);
+      while (used < i + 1 && !g_slots_used.compare_exchange_weak(used, i + 1, std::memory_order_acq_rel)) {
+      }
       g_registered.fetch_add(1, std::memory_order_acq_rel);
       region_ = r;
       t_owned = r;

@@ -27,37 +27,34 @@ struct Region {
   char* base = nullptr;
   char* top = nullptr;  // next never-used byte
   char* end = nullptr;
-  std::size_t bytes = 0;
   std::size_t live = 0;  // blocks handed out and not yet returned by the owning thread
   void* free_list[kClasses] = {};
 };
 
+// Blocks start after the Region bookkeeping at the head of the mapping.
+constexpr std::size_t kFirstBlock = (sizeof(Region) + 63) / 64 * 64;
+
 // Every region still mapped, so that delete recognises its blocks on any thread.
 constexpr int kMaxRegions = 64;
 std::atomic<Region*> g_regions[kMaxRegions];
-std::atomic<int> g_registered{0};  // regions in g_regions (live scopes and retained ones)
 std::atomic<int> g_slots_used{0};  // slots [0, this) may be non-null: delete scans only those
 std::atomic<int> g_retained{0};
 
 thread_local Region* t_allocating = nullptr;  // operator new serves from here (null: the heap)
 thread_local Region* t_owned = nullptr;       // this thread's live scope (also while paused)
 
-int size_class(std::size_t n, std::size_t* rounded) {
-  if (n <= 1024) {
-    const std::size_t c = n == 0 ? 1 : (n + 15) / 16;
-    *rounded = c * 16;
-    return static_cast<int>(c - 1);
-  }
+// kClasses when `n` is too large for any class.
+int size_class(std::size_t n) {
+  if (n <= 1024) return n == 0 ? 0 : static_cast<int>((n + 15) / 16 - 1);
   int p = 11;
   while (p < 58 && (std::size_t(1) << p) < n) ++p;
-  *rounded = std::size_t(1) << p;
   return (std::size_t(1) << p) < n ? kClasses : kSmallClasses + (p - 11);
 }
 
 void* region_alloc(Region* r, std::size_t n) {
-  std::size_t rounded = 0;
-  const int c = size_class(n, &rounded);
+  const int c = size_class(n);
   if (c >= kClasses) return nullptr;
+  const std::size_t rounded = class_bytes(c);
   char* payload;
   if (void* f = r->free_list[c]) {
     r->free_list[c] = *static_cast<void**>(f);
@@ -88,30 +85,39 @@ bool region_free(void* p) {
     --r->live;
     return true;
   }
-  if (g_registered.load(std::memory_order_acquire) == 0) return false;
   const int used = g_slots_used.load(std::memory_order_acquire);
   for (int i = 0; i < used; ++i)
     if (contains(g_regions[i].load(std::memory_order_acquire), p)) return true;  // another scope's block: kept
   return false;
 }
 
-void* heap_alloc(std::size_t n) {
+// The standard contract of operator new: retry through the new-handler, else bad_alloc.
+template <class Allocate>
+void* allocate_or_throw(Allocate allocate) {
   for (;;) {
-    if (void* p = std::malloc(n ? n : 1)) return p;
+    if (void* p = allocate()) return p;
     std::new_handler handler = std::get_new_handler();
     if (!handler) throw std::bad_alloc();
     handler();
   }
 }
 
+void* heap_alloc(std::size_t n) {
+  return allocate_or_throw([&] { return std::malloc(n ? n : 1); });
+}
+
 void* heap_alloc_aligned(std::size_t n, std::size_t align) {
   if (align < sizeof(void*)) align = sizeof(void*);
   const std::size_t size = ((n ? n : 1) + align - 1) / align * align;
-  for (;;) {
-    if (void* p = std::aligned_alloc(align, size)) return p;
-    std::new_handler handler = std::get_new_handler();
-    if (!handler) throw std::bad_alloc();
-    handler();
+  return allocate_or_throw([&] { return std::aligned_alloc(align, size); });
+}
+
+template <class Allocate>
+void* or_null(Allocate allocate) noexcept {
+  try {
+    return allocate();
+  } catch (...) {
+    return nullptr;
   }
 }
 
@@ -130,7 +136,7 @@ void release_free_pages(Region* r) {
   const std::size_t page = 4096;
   auto page_of = [&](const char* p) { return r->base + (static_cast<std::size_t>(p - r->base) / page) * page; };
   char* keep_until = r->base + page;  // end of the pages kept so far (the first holds the Region)
-  char* block = r->base + (sizeof(Region) + 63) / 64 * 64;
+  char* block = r->base + kFirstBlock;
   while (block < r->top) {
     const Header* h = reinterpret_cast<const Header*>(block);
     char* next = block + kHeader + class_bytes(h->size_class);
@@ -155,8 +161,7 @@ Region* map_region() {
     Region* r = new (m) Region();
     r->base = static_cast<char*>(m);
     r->end = r->base + bytes;
-    r->bytes = bytes;
-    r->top = r->base + (sizeof(Region) + 63) / 64 * 64;
+    r->top = r->base + kFirstBlock;
     return r;
   }
   return nullptr;
@@ -174,14 +179,13 @@ DeterministicHeapScope::DeterministicHeapScope() {
       int used = g_slots_used.load(std::memory_order_acquire);
       while (used < i + 1 && !g_slots_used.compare_exchange_weak(used, i + 1, std::memory_order_acq_rel)) {
       }
-      g_registered.fetch_add(1, std::memory_order_acq_rel);
       region_ = r;
       t_owned = r;
       t_allocating = r;
       return;
     }
   }
-  munmap(r->base, r->bytes);  // no free slot: run without
+  munmap(r->base, static_cast<std::size_t>(r->end - r->base));  // no free slot: run without
 }
 
 DeterministicHeapScope::~DeterministicHeapScope() {
@@ -198,8 +202,7 @@ DeterministicHeapScope::~DeterministicHeapScope() {
     Region* expected = r;
     if (slot.compare_exchange_strong(expected, nullptr, std::memory_order_acq_rel)) break;
   }
-  g_registered.fetch_sub(1, std::memory_order_acq_rel);
-  munmap(r->base, r->bytes);
+  munmap(r->base, static_cast<std::size_t>(r->end - r->base));
 }
 
 DeterministicHeapScope::Pause::Pause() : saved_(t_allocating) { t_allocating = nullptr; }
@@ -213,35 +216,19 @@ int deterministic_heap_retained_regions() { return g_retained.load(std::memory_o
 void* operator new(std::size_t n) { return gw::new_block(n); }
 void* operator new[](std::size_t n) { return gw::new_block(n); }
 void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
-  try {
-    return gw::new_block(n);
-  } catch (...) {
-    return nullptr;
-  }
+  return gw::or_null([&] { return gw::new_block(n); });
 }
 void* operator new[](std::size_t n, const std::nothrow_t&) noexcept {
-  try {
-    return gw::new_block(n);
-  } catch (...) {
-    return nullptr;
-  }
+  return gw::or_null([&] { return gw::new_block(n); });
 }
 // Over-aligned types never come from a region (nothing in the skeletonisation uses them).
 void* operator new(std::size_t n, std::align_val_t a) { return gw::heap_alloc_aligned(n, static_cast<std::size_t>(a)); }
 void* operator new[](std::size_t n, std::align_val_t a) { return gw::heap_alloc_aligned(n, static_cast<std::size_t>(a)); }
 void* operator new(std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
-  try {
-    return gw::heap_alloc_aligned(n, static_cast<std::size_t>(a));
-  } catch (...) {
-    return nullptr;
-  }
+  return gw::or_null([&] { return gw::heap_alloc_aligned(n, static_cast<std::size_t>(a)); });
 }
 void* operator new[](std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
-  try {
-    return gw::heap_alloc_aligned(n, static_cast<std::size_t>(a));
-  } catch (...) {
-    return nullptr;
-  }
+  return gw::or_null([&] { return gw::heap_alloc_aligned(n, static_cast<std::size_t>(a)); });
 }
 
 void operator delete(void* p) noexcept { gw::delete_block(p); }

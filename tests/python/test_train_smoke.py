@@ -235,8 +235,8 @@ def test_score_checkpoints_exports_and_scores_a_run(smoke_run, capsys):
     assert exported["obs_layout"] == "guidewire-nav/obs/2"  # the run's omega plane (settings.json)
     report = json.loads((smoke_run / "scores.json").read_text())
     s = report["scores"]["100"]
-    assert s["validation_episodes"] == 11  # 4 + 4 + 3 validation targets, one episode each
-    assert 0 <= s["validation_successes"] <= 11
+    assert s["validation_episodes"] == 15  # 4 + 4 + 3 + 4 validation targets, one episode each
+    assert 0 <= s["validation_successes"] <= 15
     assert s["validation_successes"] == sum(sum(t.values()) for t in s["validation"].values())
     assert "| 100 |" in capsys.readouterr().out
 

@@ -7,7 +7,9 @@ trees (policy/trained/README.md); which seed is best is luck. Fine-tunes that st
 stay in one basin of the loss, so the mean of their weights is itself a good actor, and it keeps what
 the runs agree on while their seed-specific drift partly cancels. Averaging actors trained from different
 initialisations is meaningless (their hidden units are not aligned); this tool cannot tell and does not
-try, so only average fine-tunes of one actor, or checkpoints of one run.
+try, so only average fine-tunes of one actor, or checkpoints of one run. Score a mean like any other actor
+(score_checkpoints, all four validation trees): the first one tried gained on the coronary-like trees and
+lost on the synthetic rows of the table (policy/trained/README.md), so it was not shipped.
 
 Every input must compute the same kind of function: same format, observation layout and size, action
 bounds, observation normalisation, layer shapes and activations. A mismatch is refused with the first

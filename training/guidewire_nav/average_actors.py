@@ -69,9 +69,11 @@ def average_actors(actors: list[dict], labels: list[str] | None = None) -> dict:
     return out
 
 
-def _describe(path: Path) -> str:
-    """path and a short content hash, so the soup's record names exactly which files went in."""
-    return f"{path} (sha256 {hashlib.sha256(path.read_bytes()).hexdigest()[:12]})"
+def _read(path: Path) -> tuple[dict, str]:
+    """The actor in `path`, and its label: the path and a short content hash of the bytes parsed, so the
+    soup's record names exactly which files went in."""
+    data = path.read_bytes()
+    return json.loads(data), f"{path} (sha256 {hashlib.sha256(data).hexdigest()[:12]})"
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -80,8 +82,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("actors", nargs="+", type=Path, help="exported actor JSONs (export_actor), at least two")
     a = p.parse_args(argv)
     try:
-        actors = [json.loads(path.read_text()) for path in a.actors]
-        soup = average_actors(actors, [_describe(path) for path in a.actors])
+        actors, labels = zip(*(_read(path) for path in a.actors))
+        soup = average_actors(list(actors), list(labels))
     except (OSError, ValueError, KeyError, TypeError) as e:  # json.JSONDecodeError is a ValueError
         print(f"error: {e}", file=sys.stderr)
         return 1

@@ -7,6 +7,7 @@
 
 #include "apps/server/tcp_server.hpp"
 #include "engine/task/navigation_task.hpp"
+#include "engine/task/observation.hpp"
 
 namespace {
 gw::TcpServer* g_server = nullptr;
@@ -33,6 +34,9 @@ int main(int argc, char** argv) {
   app.add_option("--omega-plane", omega_plane,
                  "omega's plane: approach (obs/2) or correct_branch (the paper's, obs/1)")
       ->capture_default_str();
+  app.add_flag("--omega-side", config.omega_side,
+               "also observe omega's sine, on which side of the wrong branch the tip bends (layout obs/3; "
+               "needs --omega-plane approach)");
   app.add_option("--reward-omega-centre", config.reward.omega_centre,
                  "centre of the reward's omega sigmoid (paper Eq. 3: 0.1)")
       ->capture_default_str();
@@ -57,6 +61,7 @@ int main(int argc, char** argv) {
   try {
     config.control_mode = gw::parse_control_mode(control_mode);
     config.omega_plane = gw::parse_omega_plane(omega_plane);
+    gw::observation_layout(config);  // refuses omega_side in the paper's plane, naming why
     const gw::WireParams wire = wire_json.empty() ? gw::default_wire_params() : gw::load_wire_params(wire_json);
     const gw::NavigationTask task = gw::make_navigation_task(config, wire, gw::load_anatomies(anatomies, index));
     gw::TcpServer server(task, options);

@@ -14,24 +14,28 @@ namespace {
 class PolicyController final : public Controller {
  public:
   explicit PolicyController(const std::string& path) : actor_(load_actor(path)) {
-    if (actor_.obs_size() != kObservationSize)
-      throw std::runtime_error(path + ": the actor takes " + std::to_string(actor_.obs_size()) +
-                               " observations, the task gives " + std::to_string(kObservationSize));
     try {
-      omega_plane_ = omega_plane_of_layout(actor_.obs_layout());
+      apply_observation_layout(actor_.obs_layout(), layout_);
     } catch (const std::invalid_argument& e) {
       throw std::runtime_error(path + ": the actor was trained on an unknown observation: " + e.what());
     }
+    size_ = observation_size(layout_);
+    if (actor_.obs_size() != size_)
+      throw std::runtime_error(path + ": the actor takes " + std::to_string(actor_.obs_size()) + " observations, its layout " +
+                               actor_.obs_layout() + " has " + std::to_string(size_));
     if (actor_.action_size() != 1)
       throw std::runtime_error(path + ": the actor outputs " + std::to_string(actor_.action_size()) +
                                " actions, the task takes 1 (rotation)");
-    obs_.resize(kObservationSize);
+    obs_.resize(size_);
     action_.resize(1);
   }
   const std::string& name() const override { return name_; }
-  void adapt(TaskConfig& config) const override { config.omega_plane = omega_plane_; }
+  void adapt(TaskConfig& config) const override {
+    config.omega_plane = layout_.omega_plane;
+    config.omega_side = layout_.omega_side;
+  }
   double act(const Observation& obs) override {
-    for (int i = 0; i < kObservationSize; ++i) obs_[i] = static_cast<float>(obs[static_cast<std::size_t>(i)]);
+    for (int i = 0; i < size_; ++i) obs_[i] = static_cast<float>(obs[static_cast<std::size_t>(i)]);
     actor_.act(obs_, action_);
     return static_cast<double>(action_[0]);
   }
@@ -39,7 +43,8 @@ class PolicyController final : public Controller {
  private:
   std::string name_ = "sac-policy";
   ActorMLP actor_;
-  OmegaPlane omega_plane_ = OmegaPlane::kApproach;
+  TaskConfig layout_;  // only omega_plane and omega_side are read: the actor's observation layout
+  int size_ = 0;
   Eigen::VectorXf obs_, action_;
 };
 

@@ -14,9 +14,10 @@ struct RequestError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-json observation_json(const Observation& o) {
+// The first `size` entries: the layout's (observation.hpp).
+json observation_json(const Observation& o, int size) {
   json a = json::array();
-  for (double v : o) a.push_back(v);
+  for (int i = 0; i < size; ++i) a.push_back(o[static_cast<size_t>(i)]);
   return a;
 }
 
@@ -58,8 +59,9 @@ std::uint64_t next_seed(std::uint64_t& stream) {
 std::string spec_json(const NavigationTask& task) {
   Observation low, high;
   observation_bounds(task.config, low, high);
+  const int size = observation_size(task.config);
   json names = json::array();
-  for (const char* n : observation_names()) names.push_back(n);
+  for (int i = 0; i < size; ++i) names.push_back(observation_names()[static_cast<size_t>(i)]);
   json anatomies = json::array();
   for (size_t a = 0; a < task.anatomies.size(); ++a)
     anatomies.push_back({{"name", task.anatomies[a].name},
@@ -68,9 +70,9 @@ std::string spec_json(const NavigationTask& task) {
   const TaskConfig& c = task.config;
   json j = {{"ok", true},
             {"protocol", kProtocolVersion},
-            {"obs_layout", observation_layout(c.omega_plane)},
+            {"obs_layout", observation_layout(c)},
             {"observation_space",
-             {{"shape", {kObservationSize}}, {"low", observation_json(low)}, {"high", observation_json(high)},
+             {{"shape", {size}}, {"low", observation_json(low, size)}, {"high", observation_json(high, size)},
               {"names", names}}},
             {"action_space", {{"shape", {1}}, {"low", {-1.0}}, {"high", {1.0}}, {"names", {"rotation"}}}},
             {"anatomies", anatomies},
@@ -82,6 +84,7 @@ std::string spec_json(const NavigationTask& task) {
               {"max_rotation_rad_per_s", c.max_rotation_rad_per_s},
               {"control_mode", control_mode_name(c.control_mode)},
               {"omega_plane", omega_plane_name(c.omega_plane)},
+              {"omega_side", c.omega_side},
               {"reward", {{"omega_centre", c.reward.omega_centre}, {"omega_slope", c.reward.omega_slope}}},
               {"roll_disturbance", {{"probability", c.roll_disturbance_probability},
                                     {"min_rad", c.roll_disturbance_min_rad},
@@ -168,7 +171,7 @@ std::string EnvSession::handle(const std::string& line, bool& close_connection) 
       info["max_steps"] = state_.max_steps;
       info["start_rotation_rad"] = state_.start_rotation_rad;
       info["start_tilt_rad"] = state_.start_tilt_rad;
-      return json{{"ok", true}, {"obs", observation_json(state_.obs)}, {"info", info}}.dump();
+      return json{{"ok", true}, {"obs", observation_json(state_.obs, observation_size(task_.config))}, {"info", info}}.dump();
     }
     if (cmd == "step") {
       const auto ait = req.find("action");
@@ -186,7 +189,7 @@ std::string EnvSession::handle(const std::string& line, bool& close_connection) 
       const StepOutcome out = step_episode(task_, state_, a, limits);
       if (out.info.time_limit) throw RequestError("step: " + out.info.problem + "; the episode is over, send reset");
       return json{{"ok", true},
-                  {"obs", observation_json(out.obs)},
+                  {"obs", observation_json(out.obs, observation_size(task_.config))},
                   {"reward", out.reward},
                   {"terminated", out.terminated},
                   {"truncated", out.truncated},

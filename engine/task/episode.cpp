@@ -102,18 +102,24 @@ void observe(const NavigationTask& task, EpisodeState& s, bool first) {
   o[obs_index::kLambda] = lambda_ratio(c, s);
 
   // omega against the bifurcation of the current goal (none on a path without bifurcations).
-  double omega = 0.0;
+  double omega = 0.0, side = 0.0;
   if (!course.bifurcations.empty()) {
     const size_t k = std::min(static_cast<size_t>(s.goal), course.bifurcations.size() - 1);
     const CourseBifurcation& b = course.bifurcations[k];
     const Eigen::Vector3d kappa = curvature_from_tangents(
         s.samples.tangent[0], s.samples.tangent[kTipSampleCount - 1], (kTipSampleCount - 1) * c.tip_sample_spacing_mm);
     omega = -1.0;
-    for (const Eigen::Vector3d& wp : b.wrong_in_plane)
-      omega = std::max(omega, wrong_branch_alignment(kappa, b.omega_normal, wp, task.wire.params.tip_curvature_per_mm));
+    for (const Eigen::Vector3d& wp : b.wrong_in_plane) {
+      const double rest = task.wire.params.tip_curvature_per_mm;
+      const double w = wrong_branch_alignment(kappa, b.omega_normal, wp, rest);
+      if (w < omega) continue;
+      omega = w;  // the side of the same (most dangerous) wrong branch
+      side = wrong_branch_side(kappa, b.omega_normal, wp, rest);
+    }
     if (b.wrong_in_plane.empty()) omega = 0.0;
   }
   o[obs_index::kOmega] = omega;
+  o[obs_index::kOmegaSide] = side;
 
   s.in_control = course.policy_always || near_a_bifurcation(c, course, tip);
 }

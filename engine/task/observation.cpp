@@ -1,5 +1,6 @@
 #include "engine/task/observation.hpp"
 
+#include <Eigen/Geometry>  // cross()
 #include <algorithm>
 #include <stdexcept>
 
@@ -8,20 +9,44 @@ namespace gw {
 const std::array<const char*, kObservationSize>& observation_names() {
   static const std::array<const char*, kObservationSize> names = {
       "theta_t_1", "theta_t_2", "theta_t_3", "theta_prev_1", "theta_prev_2", "theta_prev_3",
-      "lambda_t",  "lambda_prev", "action",  "omega",        "speed"};
+      "lambda_t",  "lambda_prev", "action",  "omega",        "speed",        "omega_side"};
   return names;
 }
 
-const char* observation_layout(OmegaPlane plane) {
-  return plane == OmegaPlane::kCorrectBranch ? "guidewire-nav/obs/1" : "guidewire-nav/obs/2";
+namespace {
+// omega_side is measured about the approach direction only: the paper's plane (normal to the correct
+// branch) is the one where omega is blind, and nothing was trained on that combination.
+struct Layout {
+  const char* name;
+  OmegaPlane plane;
+  bool omega_side;
+};
+constexpr Layout kLayouts[] = {{"guidewire-nav/obs/1", OmegaPlane::kCorrectBranch, false},
+                               {"guidewire-nav/obs/2", OmegaPlane::kApproach, false},
+                               {"guidewire-nav/obs/3", OmegaPlane::kApproach, true}};
+}  // namespace
+
+const char* observation_layout(const TaskConfig& config) {
+  for (const Layout& l : kLayouts)
+    if (l.plane == config.omega_plane && l.omega_side == config.omega_side) return l.name;
+  throw std::invalid_argument("omega_side needs omega's plane 'approach' (no layout has it in the paper's plane)");
 }
 
-OmegaPlane omega_plane_of_layout(const std::string& layout) {
-  for (OmegaPlane p : {OmegaPlane::kCorrectBranch, OmegaPlane::kApproach})
-    if (layout == observation_layout(p)) return p;
-  throw std::invalid_argument("observation layout '" + layout + "' is not one of " +
-                              observation_layout(OmegaPlane::kCorrectBranch) + ", " +
-                              observation_layout(OmegaPlane::kApproach));
+int observation_size(const TaskConfig& config) {
+  return config.omega_side ? kObservationSize : kPaperObservationSize;
+}
+
+void apply_observation_layout(const std::string& layout, TaskConfig& config) {
+  std::string known;
+  for (const Layout& l : kLayouts) {
+    if (layout == l.name) {
+      config.omega_plane = l.plane;
+      config.omega_side = l.omega_side;
+      return;
+    }
+    known += std::string(known.empty() ? "" : ", ") + l.name;
+  }
+  throw std::invalid_argument("observation layout '" + layout + "' is not one of " + known);
 }
 
 void observation_bounds(const TaskConfig& config, Observation& low, Observation& high) {
@@ -31,8 +56,8 @@ void observation_bounds(const TaskConfig& config, Observation& low, Observation&
   }
   low[obs_index::kLambda] = low[obs_index::kLambdaPrev] = 0.0;
   high[obs_index::kLambda] = high[obs_index::kLambdaPrev] = config.max_lambda_ratio;
-  low[obs_index::kAction] = low[obs_index::kOmega] = -1.0;
-  high[obs_index::kAction] = high[obs_index::kOmega] = 1.0;
+  low[obs_index::kAction] = low[obs_index::kOmega] = low[obs_index::kOmegaSide] = -1.0;
+  high[obs_index::kAction] = high[obs_index::kOmega] = high[obs_index::kOmegaSide] = 1.0;
   low[obs_index::kSpeed] = -config.max_abs_speed_ratio;
   high[obs_index::kSpeed] = config.max_abs_speed_ratio;
 }
@@ -43,6 +68,14 @@ double wrong_branch_alignment(const Eigen::Vector3d& curvature, const Eigen::Vec
   const double scale = std::max(kp.norm(), 0.5 * rest_curvature);
   if (!(scale > 0.0)) return 0.0;
   return std::clamp(kp.dot(wrong_in_plane) / scale, -1.0, 1.0);
+}
+
+double wrong_branch_side(const Eigen::Vector3d& curvature, const Eigen::Vector3d& plane_normal,
+                         const Eigen::Vector3d& wrong_in_plane, double rest_curvature) {
+  const Eigen::Vector3d kp = curvature - curvature.dot(plane_normal) * plane_normal;
+  const double scale = std::max(kp.norm(), 0.5 * rest_curvature);
+  if (!(scale > 0.0)) return 0.0;
+  return std::clamp(plane_normal.cross(wrong_in_plane).dot(kp) / scale, -1.0, 1.0);
 }
 
 Eigen::Vector3d curvature_from_tangents(const Eigen::Vector3d& tip_tangent, const Eigen::Vector3d& back_tangent,

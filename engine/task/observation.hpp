@@ -1,7 +1,8 @@
 #pragma once
 // The observation of paper 2.2.3, Omega = {theta_t, theta_{t-n dt}, lambda_t, lambda_{t-n dt}, a_t, omega, s},
 // as a fixed-size vector. Layouts "guidewire-nav/obs/1" (the paper's omega) and "guidewire-nav/obs/2"
-// (omega in the approach plane; TaskConfig::omega_plane), 11 floats each:
+// (omega in the approach plane; TaskConfig::omega_plane) are the first 11 entries; "guidewire-nav/obs/3"
+// (TaskConfig::omega_side) is obs/2 plus a twelfth, omega's sine:
 //   [0..2]  theta_t      t_i . c_i, i = 1..3: unit wire tangent at 0, 2, 4 mm from the tip (t_i) against
 //                        the unit centerline tangent h = 4 mm ahead of that point's projection (c_i)
 //   [3..5]  theta_{t-n dt}  the same one env step earlier (n dt = frame_skip * dt)
@@ -19,6 +20,13 @@
 //                        children, the largest (most dangerous) value.
 //   [10]    s = v . c / push speed: tip velocity over the last env step along the centerline tangent at the
 //                        tip, 1 = advancing at the push speed; clipped to +-max_abs_speed_ratio
+//   [11]    omega_side = (n x w_p) . k_p, scaled like omega (obs/3 only): the sine to omega's cosine, i.e.
+//                        on which side of w_p the tip bends, measured about omega's plane normal n. Why: omega
+//                        alone is even in the roll angle, so an actor cannot tell whether its rotation carries
+//                        the bend towards -1 or past it; the shipped obs/2 actor rotates one way until omega
+//                        is low, and when it starts a control zone already aimed (coronary T4, 2nd
+//                        bifurcation) a small residual rotation carries it past -1 and on round. With the sign
+//                        the aim is a stable set point: rotate towards the side that lowers omega.
 // Why 3 products t_i . c_i and not the figure's 3x3 t_i . c_j: the text defines theta_i = t_i . c_i
 // explicitly and calls theta an N-vector; the 6 off-diagonal products add mostly c_i . c_j-like terms,
 // i.e. the local curvature of the centerline itself, which is the anatomy-specific information the
@@ -32,15 +40,22 @@
 namespace gw {
 
 inline constexpr int kThetaCount = 3;
-inline constexpr int kObservationSize = 2 * kThetaCount + 5;
-// The layout an observation computed with `plane` has: obs/1 (kCorrectBranch), obs/2 (kApproach).
-const char* observation_layout(OmegaPlane plane);
-// The inverse, for an actor's recorded layout; throws std::invalid_argument naming the known layouts.
-OmegaPlane omega_plane_of_layout(const std::string& layout);
+// Every entry is computed on every step; a layout hands its first observation_size() entries to the actor.
+inline constexpr int kObservationSize = 2 * kThetaCount + 6;
+inline constexpr int kPaperObservationSize = kObservationSize - 1;  // obs/1, obs/2: without omega_side
+// The layout observations of `config` have: obs/1 (kCorrectBranch), obs/2 (kApproach), obs/3 (kApproach
+// with omega_side).
+const char* observation_layout(const TaskConfig& config);
+// How many leading entries that layout has: 11, or 12 for obs/3.
+int observation_size(const TaskConfig& config);
+// The inverse, for an actor's recorded layout: sets config's omega_plane and omega_side; throws
+// std::invalid_argument naming the known layouts.
+void apply_observation_layout(const std::string& layout, TaskConfig& config);
 using Observation = std::array<double, kObservationSize>;
 
 namespace obs_index {
-inline constexpr int kTheta = 0, kThetaPrev = 3, kLambda = 6, kLambdaPrev = 7, kAction = 8, kOmega = 9, kSpeed = 10;
+inline constexpr int kTheta = 0, kThetaPrev = 3, kLambda = 6, kLambdaPrev = 7, kAction = 8, kOmega = 9, kSpeed = 10,
+                     kOmegaSide = 11;
 }
 
 // Names of the entries, e.g. "theta_t_1", "lambda_prev", "omega".
@@ -54,6 +69,10 @@ void observation_bounds(const TaskConfig& config, Observation& low, Observation&
 // `rest_curvature` (1/mm, the tip's). In [-1, 1].
 double wrong_branch_alignment(const Eigen::Vector3d& curvature, const Eigen::Vector3d& plane_normal,
                               const Eigen::Vector3d& wrong_in_plane, double rest_curvature);
+// omega_side for the same arguments: (n x w_p) . k_p with omega's scaling, in [-1, 1]. With omega it is
+// (cos, sin) of the angle from w_p to k_p about n while the tip is curved.
+double wrong_branch_side(const Eigen::Vector3d& curvature, const Eigen::Vector3d& plane_normal,
+                         const Eigen::Vector3d& wrong_in_plane, double rest_curvature);
 
 // Mean curvature vector between two unit tangents of the wire, `tip_tangent` distal and `back_tangent`
 // `arc_between` mm proximal: dt/ds, pointing towards the side the tip bends to (a shape sensor gives this).

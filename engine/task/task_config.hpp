@@ -44,6 +44,7 @@ struct TaskConfig {
   double branch_direction_mm = 6.0;      // c and w (omega) = directions from a bifurcation centre to
                                          // the points this far along the correct / wrong child
   OmegaPlane omega_plane = OmegaPlane::kApproach;  // kCorrectBranch = the paper's definition (obs/1)
+  bool omega_side = false;               // layout obs/3: also hand the actor omega's sine (observation.hpp)
   double max_abs_speed_ratio = 5.0;      // s = v.c / push is clipped to +-this (bounded obs space)
   double max_lambda_ratio = 4.0;         // lambda_t / lambda_0 is clipped to [0, this]
   // --- Reward (reward.hpp) ---

@@ -206,3 +206,23 @@ def test_random_start_is_a_server_setting_and_starts_part_way_on_the_wall_anatom
     finally:
         plain.close()
         pushed.close()
+
+
+def test_omega_side_adds_a_twelfth_entry_and_changes_nothing_else(server_bin):
+    # obs/3 = obs/2 plus omega's sine: same episode, same actions, the first 11 entries bit for bit.
+    plain = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1})
+    side = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1}, server_args=["--omega-side"])
+    try:
+        assert side.spec_reply["obs_layout"] == "guidewire-nav/obs/3"
+        assert side.observation_space.shape == (12,) and side.observation_names[-1] == "omega_side"
+        a, _ = plain.reset(seed=4)
+        b, _ = side.reset(seed=4)
+        for _ in range(40):
+            a, *_ = plain.step(np.array([0.5], dtype=np.float32))
+            b, *_ = side.step(np.array([0.5], dtype=np.float32))
+            assert np.array_equal(a, b[:11])
+            assert b[9] ** 2 + b[11] ** 2 <= 1.0 + 1e-6  # (cos, sin) of one angle
+        assert b[11] != 0.0
+    finally:
+        plain.close()
+        side.close()

@@ -44,3 +44,13 @@ def test_a_broken_actor_file_is_a_clear_error(tmp_path, capsys):
 def test_needs_a_run_or_actors():
     with pytest.raises(SystemExit):
         score_checkpoints.main([])
+
+
+def test_a_runs_layout_follows_its_settings():
+    from guidewire_nav.train import Settings, server_args
+
+    assert score_checkpoints.run_layout({}) == "guidewire-nav/obs/2"
+    assert score_checkpoints.run_layout({"omega_plane": "correct_branch"}) == "guidewire-nav/obs/1"
+    assert score_checkpoints.run_layout({"omega_plane": "approach", "omega_side": True}) == "guidewire-nav/obs/3"
+    assert "--omega-side" in server_args(Settings(omega_side=True))
+    assert "--omega-side" not in server_args(Settings())

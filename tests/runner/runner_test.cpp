@@ -129,14 +129,15 @@ TEST_CASE("controllers: names and missing policy files", "[runner]") {
                     Catch::Contains("/nonexistent/actor.json"));
 }
 
-// A linear 11 -> 1 actor recorded with `layout`.
-static std::string write_actor(const fs::path& dir, const std::string& layout) {
+// A linear `inputs` -> 1 actor recorded with `layout`.
+static std::string write_actor(const fs::path& dir, const std::string& layout, int inputs = 11) {
   std::string weights = "0";
-  for (int i = 1; i < gw::kObservationSize; ++i) weights += ", 0";
+  for (int i = 1; i < inputs; ++i) weights += ", 0";
+  const std::string n = std::to_string(inputs);
   const fs::path p = dir / "actor.json";
-  std::ofstream(p) << R"({"format": "guidewire-nav/actor/1", "obs_size": 11, "action_size": 1, "obs_layout": ")" +
-                          layout + R"(", "obs_normalization": null,
-    "layers": [{"shape": [1, 11], "weight": [)" + weights + R"(], "bias": [0.5], "activation": "identity"}],
+  std::ofstream(p) << R"({"format": "guidewire-nav/actor/1", "obs_size": )" + n +
+                          R"(, "action_size": 1, "obs_layout": ")" + layout + R"(", "obs_normalization": null,
+    "layers": [{"shape": [1, )" + n + R"(], "weight": [)" + weights + R"(], "bias": [0.5], "activation": "identity"}],
     "output": {"squash": "tanh", "low": [-1], "high": [1]}, "training_settings": {}, "git_commit": null})";
   return p.string();
 }
@@ -149,11 +150,21 @@ TEST_CASE("controllers: an actor gets the omega it was trained with; an unknown 
   CHECK(config.omega_plane == gw::OmegaPlane::kCorrectBranch);
   gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/2"))->adapt(config);
   CHECK(config.omega_plane == gw::OmegaPlane::kApproach);
+  CHECK_FALSE(config.omega_side);
+  gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/3", 12))->adapt(config);
+  CHECK(config.omega_side);
+  gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/2"))->adapt(config);
+  CHECK_FALSE(config.omega_side);
   config.omega_plane = gw::OmegaPlane::kCorrectBranch;
   gw::make_controller("scripted-omega", "")->adapt(config);  // baselines leave the config alone
   CHECK(config.omega_plane == gw::OmegaPlane::kCorrectBranch);
   CHECK_THROWS_WITH(gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/0")),
                     Catch::Contains("guidewire-nav/obs/0") && Catch::Contains("guidewire-nav/obs/2"));
+  // The input count must be the layout's: obs/3 has omega's sine as a twelfth entry.
+  CHECK_THROWS_WITH(gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/3", 11)),
+                    Catch::Contains("takes 11") && Catch::Contains("has 12"));
+  CHECK_THROWS_WITH(gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/2", 12)),
+                    Catch::Contains("takes 12") && Catch::Contains("has 11"));
 }
 
 TEST_CASE("run_batch: threads give the same episodes as one thread, and the summary counts them", "[runner]") {

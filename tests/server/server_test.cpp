@@ -14,11 +14,11 @@ using nlohmann::json;
 
 namespace {
 
-gw::NavigationTask y_task() {
+gw::NavigationTask y_task(const gw::TaskConfig& config = {}) {
   std::vector<gw::Anatomy> anatomies;
   anatomies.push_back(gw::make_anatomy("y", gwtest::y_graph(), nullptr));
   anatomies.push_back(gw::make_anatomy("tree", gwtest::two_level_tree(), nullptr));
-  return gw::make_navigation_task({}, gw::default_wire_params(), std::move(anatomies));
+  return gw::make_navigation_task(config, gw::default_wire_params(), std::move(anatomies));
 }
 
 // A server on a free port, serving from a background thread for the lifetime of the object.
@@ -69,6 +69,26 @@ TEST_CASE("server: spec describes spaces, protocol and layout", "[server]") {
   CHECK(spec.at("action_space").at("low") == json::array({-1.0}));
   CHECK(spec.at("anatomies").size() == 2);
   CHECK(spec.at("anatomies")[1].at("targets") == 3);
+}
+
+TEST_CASE("server: with omega_side the layout is obs/3 and every observation has omega's sine", "[server]") {
+  gw::TaskConfig config;
+  config.omega_side = true;
+  const gw::NavigationTask task = y_task(config);
+  RunningServer s(task);
+  gwtest::RawClient c(s.server.port());
+  const json spec = ask(c, R"({"cmd":"spec"})");
+  CHECK(spec.at("obs_layout") == "guidewire-nav/obs/3");
+  CHECK(spec.at("task").at("omega_side") == true);
+  CHECK(spec.at("observation_space").at("shape") == json::array({12}));
+  CHECK(spec.at("observation_space").at("names").back() == "omega_side");
+  CHECK(spec.at("observation_space").at("high").size() == 12);
+  CHECK(ask(c, R"({"cmd":"reset","seed":5,"options":{"anatomy":"y","target":1}})").at("obs").size() == 12);
+  const json st = ask(c, R"({"cmd":"step","action":[0.5]})");
+  REQUIRE(st.at("obs").size() == 12);
+  const double omega = st.at("obs")[9].get<double>(), side = st.at("obs")[11].get<double>();
+  CHECK(std::abs(side) <= 1.0);
+  CHECK(omega * omega + side * side <= 1.0 + 1e-9);  // (cos, sin) of one angle, faded alike
 }
 
 TEST_CASE("server: reset and step replies; close ends the connection", "[server]") {

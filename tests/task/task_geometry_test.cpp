@@ -1,6 +1,7 @@
 // Geometry of the navigation task on hand-made centerlines: polyline queries, courses
 // (bifurcation directions, goals), omega, reward (Eq. 3), observation layout.
 #include <catch2/catch.hpp>
+#include <Eigen/Geometry>
 #include <cmath>
 
 #include "engine/task/course.hpp"
@@ -159,6 +160,28 @@ TEST_CASE("omega: cosine of tip bend vs wrong branch in the plane normal to the 
   CHECK(gw::wrong_branch_alignment({0.2, 0, 0}, c, Vector3d::Zero(), kappa) == Approx(0.0));
 }
 
+TEST_CASE("omega_side: the sine to omega's cosine, so a roll about the plane normal walks a circle", "[task]") {
+  const Vector3d n(0, 0, 1), wp(1, 0, 0);
+  const double kappa = 0.2;
+  CHECK(gw::wrong_branch_side({0.2, 0, 0}, n, wp, kappa) == Approx(0.0).margin(1e-12));
+  CHECK(gw::wrong_branch_side({0, 0.2, 0}, n, wp, kappa) == Approx(1.0));   // n x w_p = +y
+  CHECK(gw::wrong_branch_side({0, -0.2, 0.7}, n, wp, kappa) == Approx(-1.0));  // the part along n is ignored
+  CHECK(gw::wrong_branch_side({0, 0.05, 0}, n, wp, kappa) == Approx(0.5));  // faded like omega
+  CHECK(gw::wrong_branch_side({0, 0.2, 0}, n, Vector3d::Zero(), kappa) == Approx(0.0));
+  // Rolling the bend by phi about n (what a proximal rotation does to a tip pointing along n) moves
+  // atan2(side, omega) by phi, whichever way the wrong branch lies: the sign says which way to turn.
+  for (const Vector3d& w : {Vector3d(1, 0, 0), Vector3d(-0.6, 0.8, 0), Vector3d(0, -1, 0)}) {
+    const Vector3d k0 = 0.2 * Vector3d(0.8, 0.6, 0);
+    double previous = std::atan2(gw::wrong_branch_side(k0, n, w, kappa), gw::wrong_branch_alignment(k0, n, w, kappa));
+    for (int step = 1; step <= 8; ++step) {
+      const Vector3d k = Eigen::AngleAxisd(0.3 * step, n) * k0;
+      const double angle = std::atan2(gw::wrong_branch_side(k, n, w, kappa), gw::wrong_branch_alignment(k, n, w, kappa));
+      CHECK(std::remainder(angle - previous, 2 * M_PI) == Approx(0.3));
+      previous = angle;
+    }
+  }
+}
+
 TEST_CASE("curvature from two tangents of a circular arc", "[task]") {
   // Arc of radius 5 (curvature 0.2) in the xy plane: tangent at arc s is (cos(s/5), sin(s/5), 0),
   // the curvature vector dt/ds points along (-sin, cos), towards the centre.
@@ -200,12 +223,28 @@ TEST_CASE("reward sigmoid can be shifted and steepened", "[task]") {
 }
 
 TEST_CASE("observation layout is fixed and bounded", "[task]") {
-  CHECK(gw::kObservationSize == 11);
-  CHECK(std::string(gw::observation_layout(gw::OmegaPlane::kCorrectBranch)) == "guidewire-nav/obs/1");
-  CHECK(std::string(gw::observation_layout(gw::OmegaPlane::kApproach)) == "guidewire-nav/obs/2");
-  CHECK(gw::omega_plane_of_layout("guidewire-nav/obs/1") == gw::OmegaPlane::kCorrectBranch);
-  CHECK(gw::omega_plane_of_layout("guidewire-nav/obs/2") == gw::OmegaPlane::kApproach);
-  CHECK_THROWS_WITH(gw::omega_plane_of_layout("guidewire-nav/obs/9"), Catch::Contains("guidewire-nav/obs/2"));
+  CHECK(gw::kObservationSize == 12);
+  gw::TaskConfig layout;
+  layout.omega_plane = gw::OmegaPlane::kCorrectBranch;
+  CHECK(std::string(gw::observation_layout(layout)) == "guidewire-nav/obs/1");
+  CHECK(gw::observation_size(layout) == 11);
+  layout.omega_plane = gw::OmegaPlane::kApproach;
+  CHECK(std::string(gw::observation_layout(layout)) == "guidewire-nav/obs/2");
+  CHECK(gw::observation_size(layout) == 11);
+  layout.omega_side = true;
+  CHECK(std::string(gw::observation_layout(layout)) == "guidewire-nav/obs/3");
+  CHECK(gw::observation_size(layout) == 12);
+  layout.omega_plane = gw::OmegaPlane::kCorrectBranch;  // no layout has the sine in the paper's plane
+  CHECK_THROWS_WITH(gw::observation_layout(layout), Catch::Contains("approach"));
+  for (const char* name : {"guidewire-nav/obs/1", "guidewire-nav/obs/2", "guidewire-nav/obs/3"}) {
+    gw::TaskConfig round_trip;
+    gw::apply_observation_layout(name, round_trip);
+    CHECK(std::string(gw::observation_layout(round_trip)) == name);
+  }
+  gw::TaskConfig untouched;
+  CHECK_THROWS_WITH(gw::apply_observation_layout("guidewire-nav/obs/9", untouched),
+                    Catch::Contains("guidewire-nav/obs/2") && Catch::Contains("guidewire-nav/obs/3"));
+  CHECK(std::string(gw::observation_names()[gw::obs_index::kOmegaSide]) == "omega_side");
   CHECK(gw::parse_omega_plane("approach") == gw::OmegaPlane::kApproach);
   CHECK_THROWS_WITH(gw::parse_omega_plane("sideways"), Catch::Contains("correct_branch, approach"));
   CHECK(std::string(gw::observation_names()[gw::obs_index::kOmega]) == "omega");

@@ -11,7 +11,8 @@ got) and talks to it over a TCP socket with the newline-delimited JSON protocol 
 Observation: 11 float32 values (engine/task/observation.hpp): theta_t (3), theta_{t-n dt} (3),
 lambda_t, lambda_{t-n dt}, a_t, omega, s. Layout "guidewire-nav/obs/2" (omega in the approach plane,
 the server's default) or "guidewire-nav/obs/1" (the paper's omega: ``server_args=["--omega-plane",
-"correct_branch"]``); the exported actor records which one it was trained on.  Action: one float in
+"correct_branch"]``); "guidewire-nav/obs/3" (``server_args=["--omega-side"]``) adds a twelfth, omega's
+sine. The exported actor records which one it was trained on.  Action: one float in
 [-1, 1], the proximal rotation rate as a fraction of the maximum.  Reward: paper Eq. 3.
 """
 
@@ -34,7 +35,8 @@ import numpy as np
 import guidewire_nav
 
 PROTOCOL = "guidewire-nav/protocol/1"
-OBS_LAYOUTS = ("guidewire-nav/obs/1", "guidewire-nav/obs/2")  # same shape; omega's plane differs
+# obs/1 and obs/2: 11 values, omega's plane differs; obs/3: obs/2 and omega's sine (12 values)
+OBS_LAYOUTS = ("guidewire-nav/obs/1", "guidewire-nav/obs/2", "guidewire-nav/obs/3")
 
 
 class ServerError(RuntimeError):

@@ -178,7 +178,8 @@ def main(argv=None) -> None:
     p.add_argument("--vecnormalize", help="VecNormalize statistics .pkl (not stored in the zip)")
     p.add_argument("--obs-layout", default="guidewire-nav/obs/2",
                    help="observation layout the model was trained on: guidewire-nav/obs/2 (the server's default "
-                        "omega plane) or guidewire-nav/obs/1 (--omega-plane correct_branch, the paper's)")
+                        "omega plane), guidewire-nav/obs/1 (--omega-plane correct_branch, the paper's) or "
+                        "guidewire-nav/obs/3 (--omega-side)")
     a = p.parse_args(argv)
     model = SAC.load(a.model, device="cpu")
     export_sac_actor(model, a.out, obs_layout=a.obs_layout, vecnormalize=a.vecnormalize)

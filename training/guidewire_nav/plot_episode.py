@@ -84,6 +84,9 @@ def plot(episode: dict, out: Path) -> None:
         for h in hand_overs:
             ax.axvline(h, color="0.4", ls="--", lw=0.8)
         ax.plot(steps, values, color="tab:blue", lw=1.2)
+        if label == "omega" and "omega_side" in c:  # its sine (trajectories since 2026-11-30): which side
+            ax.plot(steps, c["omega_side"], color="tab:orange", lw=0.9, label="omega_side")
+            ax.legend(loc="upper right", fontsize=7)
         ax.axhline(0, color="0.7", lw=0.6)
         ax.set_ylabel(label)
         ax.set_ylim(low, high)

@@ -38,7 +38,11 @@ VALIDATION = [
     ("anatomies/validation/pl_validation/pl_validation.stl", [2, 3, 4]),
     ("anatomies/validation/syn_validation/syn_validation.stl", [1, 2, 3, 4]),
 ]
-LAYOUTS = {"approach": "guidewire-nav/obs/2", "correct_branch": "guidewire-nav/obs/1"}
+def run_layout(settings: dict) -> str:
+    """The observation layout a run's settings.json trained on (observation.hpp)."""
+    if settings.get("omega_side", False):
+        return "guidewire-nav/obs/3"
+    return {"approach": "guidewire-nav/obs/2", "correct_branch": "guidewire-nav/obs/1"}[settings.get("omega_plane", "approach")]
 
 
 def app(name: str) -> Path:
@@ -67,7 +71,7 @@ def export_checkpoints(run: Path, steps: list[str]) -> dict[str, Path]:
     from guidewire_nav.export_actor import export_sac_actor
 
     settings = json.loads((run / "settings.json").read_text()) if (run / "settings.json").exists() else {}
-    layout = LAYOUTS[settings.get("omega_plane", "approach")]
+    layout = run_layout(settings)
     (run / "scored").mkdir(exist_ok=True)
     actors = {}
     for step in steps:

@@ -35,6 +35,8 @@ class Settings:
     out: str = "runs/sac"                  # run folder: logs, checkpoints, actor.json, curve PNG
     anatomies: str = "train"               # anatomy set (or comma-separated names) the servers load
     omega_plane: str = "approach"          # omega's plane: approach (obs/2) or correct_branch (paper, obs/1)
+    omega_side: bool = False               # also observe omega's sine (obs/3, approach plane only): which way the
+                                           #   rotation carries the bend towards -1 (observation.hpp says why)
     reward_omega_centre: float = 0.1       # reward sigmoid 2/(1+exp(slope(omega-centre)))-1; paper Eq. 3 is
     reward_omega_slope: float = 5.0        #   centre 0.1, slope 5 (engine/task/reward.hpp says why to change)
     roll_disturbance: float = 0.0          # per-episode probability of an unannounced 45-180 deg proximal
@@ -101,7 +103,7 @@ def git_commit() -> str:
 def server_args(s: Settings) -> list[str]:
     return ["--omega-plane", s.omega_plane, "--reward-omega-centre", repr(s.reward_omega_centre),
             "--reward-omega-slope", repr(s.reward_omega_slope), "--roll-disturbance", repr(s.roll_disturbance),
-            "--random-start", repr(s.random_start)]
+            "--random-start", repr(s.random_start)] + (["--omega-side"] if s.omega_side else [])
 
 
 def make_env_fn(s: Settings, rank: int, eval_env: bool = False):

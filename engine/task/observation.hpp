@@ -23,10 +23,11 @@
 //   [11]    omega_side = (n x w_p) . k_p, scaled like omega (obs/3 only): the sine to omega's cosine, i.e.
 //                        on which side of w_p the tip bends, measured about omega's plane normal n. Why: omega
 //                        alone is even in the roll angle, so an actor cannot tell whether its rotation carries
-//                        the bend towards -1 or past it; the shipped obs/2 actor rotates one way until omega
-//                        is low, and when it starts a control zone already aimed (coronary T4, 2nd
-//                        bifurcation) a small residual rotation carries it past -1 and on round. With the sign
-//                        the aim is a stable set point: rotate towards the side that lowers omega.
+//                        the bend towards -1 or past it; the obs/2 actor shipped until 2026-11-30 rotates one
+//                        way until omega is low, and when it starts a control zone already aimed (coronary T4,
+//                        2nd bifurcation) a small residual rotation carries it past -1 and on round. With the
+//                        sign the aim is a stable set point: rotate towards the side that lowers omega. The
+//                        shipped actor is obs/3 (policy/trained/README.md).
 // Why 3 products t_i . c_i and not the figure's 3x3 t_i . c_j: the text defines theta_i = t_i . c_i
 // explicitly and calls theta an N-vector; the 6 off-diagonal products add mostly c_i . c_j-like terms,
 // i.e. the local curvature of the centerline itself, which is the anatomy-specific information the

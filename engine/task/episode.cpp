@@ -108,9 +108,9 @@ void observe(const NavigationTask& task, EpisodeState& s, bool first) {
     const CourseBifurcation& b = course.bifurcations[k];
     const Eigen::Vector3d kappa = curvature_from_tangents(
         s.samples.tangent[0], s.samples.tangent[kTipSampleCount - 1], (kTipSampleCount - 1) * c.tip_sample_spacing_mm);
+    const double rest = task.wire.params.tip_curvature_per_mm;
     omega = -1.0;
     for (const Eigen::Vector3d& wp : b.wrong_in_plane) {
-      const double rest = task.wire.params.tip_curvature_per_mm;
       const double w = wrong_branch_alignment(kappa, b.omega_normal, wp, rest);
       if (w < omega) continue;
       omega = w;  // the side of the same (most dangerous) wrong branch

@@ -62,20 +62,32 @@ void observation_bounds(const TaskConfig& config, Observation& low, Observation&
   high[obs_index::kSpeed] = config.max_abs_speed_ratio;
 }
 
+namespace {
+// The curvature projected on omega's plane, k_p, and omega's scale max(|k_p|, kappa_rest/2): a unit
+// in-plane direction dotted with k_p / scale gives a cosine while the tip is curved, fading as the wall
+// straightens it.
+struct InPlaneCurvature {
+  Eigen::Vector3d kp;
+  double scale;
+};
+InPlaneCurvature in_plane(const Eigen::Vector3d& curvature, const Eigen::Vector3d& plane_normal, double rest_curvature) {
+  const Eigen::Vector3d kp = curvature - curvature.dot(plane_normal) * plane_normal;
+  return {kp, std::max(kp.norm(), 0.5 * rest_curvature)};
+}
+double scaled_dot(const InPlaneCurvature& k, const Eigen::Vector3d& direction) {
+  if (!(k.scale > 0.0)) return 0.0;
+  return std::clamp(k.kp.dot(direction) / k.scale, -1.0, 1.0);
+}
+}  // namespace
+
 double wrong_branch_alignment(const Eigen::Vector3d& curvature, const Eigen::Vector3d& plane_normal,
                               const Eigen::Vector3d& wrong_in_plane, double rest_curvature) {
-  const Eigen::Vector3d kp = curvature - curvature.dot(plane_normal) * plane_normal;
-  const double scale = std::max(kp.norm(), 0.5 * rest_curvature);
-  if (!(scale > 0.0)) return 0.0;
-  return std::clamp(kp.dot(wrong_in_plane) / scale, -1.0, 1.0);
+  return scaled_dot(in_plane(curvature, plane_normal, rest_curvature), wrong_in_plane);
 }
 
 double wrong_branch_side(const Eigen::Vector3d& curvature, const Eigen::Vector3d& plane_normal,
                          const Eigen::Vector3d& wrong_in_plane, double rest_curvature) {
-  const Eigen::Vector3d kp = curvature - curvature.dot(plane_normal) * plane_normal;
-  const double scale = std::max(kp.norm(), 0.5 * rest_curvature);
-  if (!(scale > 0.0)) return 0.0;
-  return std::clamp(plane_normal.cross(wrong_in_plane).dot(kp) / scale, -1.0, 1.0);
+  return scaled_dot(in_plane(curvature, plane_normal, rest_curvature), plane_normal.cross(wrong_in_plane));
 }
 
 Eigen::Vector3d curvature_from_tangents(const Eigen::Vector3d& tip_tangent, const Eigen::Vector3d& back_tangent,

@@ -40,8 +40,28 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   app.add_option("--controllers", controllers, "comma-separated columns: policy, push-only, scripted-omega");
+  std::string from_json;
+  app.add_option("--from-json", from_json,
+                 "run nothing: write results.md (to --out) again from a results.json an earlier run wrote");
   CLI11_PARSE(app, argc, argv);
   try {
+    if (!from_json.empty()) {
+      // The report's format changes more often than the episodes are worth re-running (32 min).
+      std::ifstream in(from_json);
+      if (!in) throw std::runtime_error("--from-json: cannot read '" + from_json + "'");
+      nlohmann::json result;
+      try {
+        result = nlohmann::json::parse(in);
+      } catch (const nlohmann::json::exception& e) {
+        throw std::runtime_error("--from-json: '" + from_json + "' is not JSON: " + e.what());
+      }
+      if (!result.contains("rows") || !result["rows"].is_array())
+        throw std::runtime_error("--from-json: '" + from_json + "' has no \"rows\" array (not an evaluate results.json)");
+      std::filesystem::create_directories(out_dir);
+      gw::write_file_atomic(out_dir + "/results.md", gw::evaluation_to_markdown(result));
+      std::cout << gw::evaluation_to_markdown(result);
+      return 0;
+    }
     if (centerlines != "extract" && centerlines != "truth")
       throw std::invalid_argument("--centerlines must be 'extract' or 'truth', got '" + centerlines + "'");
     o.extract_centerlines = centerlines == "extract";

@@ -15,6 +15,7 @@
 #include "apps/runner/episode_batch.hpp"
 #include "apps/runner/navigation_anatomy.hpp"
 #include "apps/runner/reachability.hpp"
+#include "apps/runner/success_statistics.hpp"
 #include "engine/task/navigation_task.hpp"
 #include "engine/wire/wire_params.hpp"
 
@@ -176,6 +177,26 @@ std::string reachable_percent(const nlohmann::json& row) {
   return s.str();
 }
 
+// The 95% Wilson interval of a column's success rate: "76-94%", or "—".
+std::string interval(const nlohmann::json& results, const std::string& column) {
+  if (!results.contains(column)) return "—";
+  const RateInterval ci = wilson_interval(results[column]["successes"].get<int>(), results[column]["episodes"].get<int>());
+  std::ostringstream s;
+  s << std::lround(100.0 * ci.low) << "-" << std::lround(100.0 * ci.high) << "%";
+  return s.str();
+}
+
+// SAC against the scripted omega controller on the same episodes: "won 2, lost 4 (p 0.69)", or "—".
+std::string sac_vs_scripted(const nlohmann::json& results) {
+  if (!results.contains("sac-policy") || !results.contains("scripted-omega")) return "—";
+  const PairedComparison c = compare_paired(results["sac-policy"], results["scripted-omega"]);
+  if (c.paired == 0) return "—";
+  std::ostringstream s;
+  s << "won " << c.only_first << ", lost " << c.only_second << " (p " << std::fixed << std::setprecision(2)
+    << c.sign_test_p << ")";
+  return s.str();
+}
+
 std::string percent(const nlohmann::json& results, const std::string& column) {
   if (!results.contains(column)) return "—";
   std::ostringstream s;
@@ -229,14 +250,19 @@ std::string failure_modes(const nlohmann::json& summary, const std::set<std::str
 
 std::string evaluation_to_markdown(const nlohmann::json& e) {
   std::ostringstream md;
-  md << "| case | episodes | SAC (ours) | push-only | scripted omega | paper | SAC, reachable targets |\n"
-        "|---|---|---|---|---|---|---|\n";
+  md << "| case | episodes | SAC (ours) | SAC, 95% interval | push-only | scripted omega | paper | "
+        "SAC, reachable targets | SAC vs scripted, same episodes |\n"
+        "|---|---|---|---|---|---|---|---|---|\n";
   for (const nlohmann::json& r : e["rows"]) {
     const nlohmann::json& res = r["results"];
     md << "| " << r["name"].get<std::string>() << " | " << r["episodes"].get<int>() << " | "
-       << percent(res, "sac-policy") << " | " << percent(res, "push-only") << " | " << percent(res, "scripted-omega")
-       << " | " << std::lround(100.0 * r["paper"].get<double>()) << "% | " << reachable_percent(r) << " |\n";
+       << percent(res, "sac-policy") << " | " << interval(res, "sac-policy") << " | " << percent(res, "push-only")
+       << " | " << percent(res, "scripted-omega") << " | " << std::lround(100.0 * r["paper"].get<double>()) << "% | "
+       << reachable_percent(r) << " | " << sac_vs_scripted(res) << " |\n";
   }
+  md << "\nSAC, 95% interval: Wilson score interval of SAC's rate over the row's episodes. SAC vs scripted: "
+        "episodes SAC reached and the scripted omega controller did not (won) and the reverse (lost), with the "
+        "exact two-sided sign test on those (p < 0.05: unlikely to be the luck of the seeds).\n";
   md << "\nFailure modes (episodes that did not reach the target, by outcome; in brackets the anatomy, "
         "target and, for a wrong branch, the goal (bifurcation on the path, k of n) it was lost before; "
         "[unreachable]: no controller of the row reached that target and none of "

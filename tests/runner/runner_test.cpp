@@ -13,6 +13,7 @@
 #include "apps/runner/reachability.hpp"
 #include "apps/runner/rotation_schedules.hpp"
 #include "apps/runner/run_episode.hpp"
+#include "apps/runner/success_statistics.hpp"
 #include "engine/task/navigation_task.hpp"
 #include "engine/task/observation.hpp"
 #include "engine/wire/wire_params.hpp"
@@ -290,19 +291,61 @@ TEST_CASE("evaluation table: the paper's rows and a Markdown table that says why
   const std::string why = gw::evaluation_to_markdown(by_hand);
   CHECK(why.find("wrong_branch 3 (coronary T3 goal 2/3 x2, coronary T1 goal 1/2 x1)") != std::string::npos);
   CHECK(why.find("diverged 1 (coronary T6 x1)") != std::string::npos);
-  CHECK(why.find("| coronary-like | 4 | — | — | 0% | 94% | — |") != std::string::npos);
+  CHECK(why.find("| coronary-like | 4 | — | — | — | 0% | 94% | — | — |") != std::string::npos);
 
   // A target no rotation reaches is marked where it was lost, and SAC's rate over the others is shown.
   nlohmann::json win = {{"outcome", "success"}, {"anatomy", "coronary"}, {"target", 1}, {"detail", ""}};
+  nlohmann::json win6 = win;
+  win6["target"] = 6;
   nlohmann::json sac = summary;
-  sac["results"] = {win, lost, lost, win};
+  sac["results"] = {win, lost, lost, win6};
+  sac["successes"] = 2;
+  sac["success_rate"] = 0.5;
+  for (int k = 0; k < 4; ++k) {  // episode k has seed k in both columns, as evaluate runs them
+    sac["results"][k]["seed"] = k;
+    by_hand["rows"][0]["results"]["scripted-omega"]["results"][k]["seed"] = k;
+  }
   by_hand["rows"][0]["results"]["sac-policy"] = sac;
   by_hand["rows"][0]["reachability"] = {{{"key", "coronary T3"}, {"anatomy", "coronary"}, {"target", 3},
                                          {"reachable", false}, {"episodes", 16}}};
   const std::string marked = gw::evaluation_to_markdown(by_hand);
   CHECK(marked.find("| 94% | 100% (2/2) |") != std::string::npos);
+  // Same four episodes for both columns (same seed per episode): SAC 2 of 4, scripted 0 of 4.
+  CHECK(marked.find("| 50% | 15-85% |") != std::string::npos);
+  CHECK(marked.find("| won 2, lost 0 (p 0.50) |") != std::string::npos);
   CHECK(marked.find("coronary T3 goal 2/3 [unreachable] x2") != std::string::npos);
   CHECK(marked.find("coronary T1 goal 1/2 x1") != std::string::npos);
+}
+
+TEST_CASE("success statistics: Wilson intervals and the paired sign test", "[runner]") {
+  // Reference values from the closed form (Wilson 1927), computed independently.
+  const gw::RateInterval ci = gw::wilson_interval(44, 50);
+  CHECK(ci.low == Approx(0.7620).margin(1e-4));
+  CHECK(ci.high == Approx(0.9438).margin(1e-4));
+  CHECK(gw::wilson_interval(50, 50).high == Approx(1.0));
+  CHECK(gw::wilson_interval(50, 50).low == Approx(0.9287).margin(1e-4));  // not degenerate at n of n
+  CHECK(gw::wilson_interval(0, 50).low == Approx(0.0).margin(1e-12));
+  CHECK(gw::wilson_interval(0, 0).high == 1.0);
+  CHECK_THROWS_WITH(gw::wilson_interval(5, 4), Catch::Contains("5 successes of 4 episodes"));
+  // Exact binomial: 2 vs 4 discordant pairs -> 2 (1 + 6 + 15) / 64; 0 vs 5 -> 2 / 32.
+  CHECK(gw::sign_test_p(2, 4) == Approx(0.6875));
+  CHECK(gw::sign_test_p(4, 2) == Approx(0.6875));
+  CHECK(gw::sign_test_p(0, 5) == Approx(0.0625));
+  CHECK(gw::sign_test_p(0, 0) == 1.0);
+  CHECK(gw::sign_test_p(3, 3) == 1.0);
+  CHECK(gw::sign_test_p(0, 1000) < 1e-250);
+
+  // Pairing is by (anatomy, target, seed); an episode only one side ran is ignored.
+  auto ep = [](int seed, bool ok) {
+    return nlohmann::json{{"anatomy", "var1"}, {"target", 2}, {"seed", seed}, {"outcome", ok ? "success" : "wrong_branch"}};
+  };
+  const nlohmann::json a = {{"results", {ep(0, true), ep(1, true), ep(2, false), ep(3, true), ep(9, true)}}};
+  const nlohmann::json b = {{"results", {ep(0, true), ep(1, false), ep(2, true), ep(3, false)}}};
+  const gw::PairedComparison c = gw::compare_paired(a, b);
+  CHECK(c.paired == 4);
+  CHECK(c.only_first == 2);
+  CHECK(c.only_second == 1);
+  CHECK(c.sign_test_p == Approx(1.0));
 }
 
 TEST_CASE("rotation schedules: the family, their rules, unknown names", "[runner]") {

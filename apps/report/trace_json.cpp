@@ -90,6 +90,7 @@ std::string trace_to_json(const EpisodeTrace& t, int indent) {
   j["seed"] = t.seed;
   j["outcome"] = t.outcome;
   j["detail"] = t.detail;
+  if (!std::isnan(t.omega_at_loss)) j["omega_at_loss"] = t.omega_at_loss;
   j["num_frames"] = t.time_s.size();
   if (!t.observation_names.empty()) j["observation_names"] = t.observation_names;
   j["frames"] = std::move(frames);
@@ -117,6 +118,7 @@ EpisodeTrace trace_from_json(const std::string& text, const std::string& origin)
     t.seed = field(j, "seed").get<std::uint64_t>();
     t.outcome = field(j, "outcome").get<std::string>();
     t.detail = field(j, "detail").get<std::string>();
+    if (j.contains("omega_at_loss")) t.omega_at_loss = read_number(j["omega_at_loss"]);
     const json& frames = field(j, "frames");
     for (const auto& v : array_field(frames, "time_s")) t.time_s.push_back(read_number(v));
     for (const auto& v : array_field(frames, "tip")) t.tip.push_back(read_point(v));

@@ -3,6 +3,7 @@
 // writer of gw_report takes (trajectory JSON, .vtp, biplane PNG). Millimetres, seconds.
 #include <Eigen/Core>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,12 @@ struct EpisodeTrace {
   // final frame's). The last entry of wire_shapes is "the final wire shape".
   std::vector<std::vector<Eigen::Vector3d>> wire_shapes;
   std::vector<int> wire_shape_frame;
+
+  // For a wrong-branch failure: omega (observation 9) when the tip's projection on the path reached
+  // the centre of the bifurcation it was lost at, or at the failure if the tip left before that.
+  // -1 = the tip bent straight away from the wrong branch: a tip that was aimed and still went wrong
+  // points at the wire and the anatomy, not at the controller's aim. NaN for any other outcome.
+  double omega_at_loss = std::numeric_limits<double>::quiet_NaN();
 };
 
 // The outcomes a trace may carry (what navigate's summary counts).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <exception>
 #include <mutex>
 #include <random>
@@ -101,6 +102,7 @@ nlohmann::json summarize_episodes(const std::vector<EpisodeTrace>& traces) {
                        {"detail", t.detail},
                        {"steps", t.time_s.empty() ? 0 : static_cast<int>(t.time_s.size()) - 1},
                        {"sim_time_s", t.time_s.empty() ? 0.0 : t.time_s.back()}});
+    if (!std::isnan(t.omega_at_loss)) results.back()["omega_at_loss"] = t.omega_at_loss;
   }
   const int n = static_cast<int>(traces.size());
   return {{"episodes", n},

@@ -37,7 +37,8 @@ std::vector<EpisodeTrace> run_batch(const NavigationTask& task, const std::vecto
                                     const std::function<void(int, int)>& progress = {});
 
 // {"episodes", "successes", "success_rate", "outcomes": {outcome: count}, "results": [per episode:
-// anatomy, controller, target, seed, outcome, detail, steps, sim_time_s]}.
+// anatomy, controller, target, seed, outcome, detail, steps, sim_time_s, and for a wrong branch
+// omega_at_loss (EpisodeTrace)]}.
 nlohmann::json summarize_episodes(const std::vector<EpisodeTrace>& traces);
 
 }  // namespace gw

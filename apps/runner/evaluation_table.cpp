@@ -216,13 +216,25 @@ std::string failure_place(const std::string& detail) {
   return "goal " + place;
 }
 
-// "wrong_branch 9 (t3 T1 goal 1/1 x5, t4 T2 goal 1/1 x4), diverged 1 (...)": counts per outcome, and
-// per outcome the anatomy, target and bifurcation where they happened, most frequent first.
+// A wrong-branch loss counts as "aimed" when omega was at most this when the tip reached the lost
+// bifurcation's centre (EpisodeTrace::omega_at_loss): the bend within ~26 degrees of pointing straight
+// away from the wrong branch. The scripted controller stops turning at -0.95.
+constexpr double kAimedOmega = -0.9;
+
+struct PlaceCount {
+  int episodes = 0;
+  int measured = 0;  // episodes that carry omega_at_loss
+  int aimed = 0;
+};
+
+// "wrong_branch 9 (t3 T1 goal 1/1 x5 aimed 5, t4 T2 goal 1/1 x4 aimed 1), diverged 1 (...)": counts per
+// outcome, and per outcome the anatomy, target and bifurcation where they happened, most frequent first;
+// for wrong branches, how many of them the controller had aimed (kAimedOmega).
 std::string failure_modes(const nlohmann::json& summary, const std::set<std::string>& unreachable) {
   std::string text;
   for (const auto& [outcome, count] : summary["outcomes"].items()) {
     if (outcome == "success" || count.get<int>() == 0) continue;
-    std::map<std::string, int> places;
+    std::map<std::string, PlaceCount> places;
     if (summary.contains("results"))
       for (const nlohmann::json& ep : summary["results"]) {
         if (ep.value("outcome", "") != outcome) continue;
@@ -231,15 +243,24 @@ std::string failure_modes(const nlohmann::json& summary, const std::set<std::str
         const std::string goal = failure_place(ep.value("detail", ""));
         if (!goal.empty()) place += " " + goal;
         if (no_rotation_reaches) place += " [unreachable]";
-        ++places[place];
+        PlaceCount& c = places[place];
+        ++c.episodes;
+        if (ep.contains("omega_at_loss") && ep["omega_at_loss"].is_number()) {
+          ++c.measured;
+          c.aimed += ep["omega_at_loss"].get<double>() <= kAimedOmega;
+        }
       }
-    std::vector<std::pair<std::string, int>> sorted(places.begin(), places.end());
-    std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+    std::vector<std::pair<std::string, PlaceCount>> sorted(places.begin(), places.end());
+    std::stable_sort(sorted.begin(), sorted.end(),
+                     [](const auto& a, const auto& b) { return a.second.episodes > b.second.episodes; });
     text += (text.empty() ? "" : ", ") + outcome + " " + std::to_string(count.get<int>());
     if (!sorted.empty()) {
       text += " (";
-      for (std::size_t i = 0; i < sorted.size(); ++i)
-        text += (i ? ", " : "") + sorted[i].first + " x" + std::to_string(sorted[i].second);
+      for (std::size_t i = 0; i < sorted.size(); ++i) {
+        const PlaceCount& c = sorted[i].second;
+        text += (i ? ", " : "") + sorted[i].first + " x" + std::to_string(c.episodes);
+        if (c.measured > 0) text += " aimed " + std::to_string(c.aimed);
+      }
       text += ")";
     }
   }
@@ -266,7 +287,10 @@ std::string evaluation_to_markdown(const nlohmann::json& e) {
   md << "\nFailure modes (episodes that did not reach the target, by outcome; in brackets the anatomy, "
         "target and, for a wrong branch, the goal (bifurcation on the path, k of n) it was lost before; "
         "[unreachable]: no controller of the row reached that target and none of "
-        "the rotation schedules of apps/runner/rotation_schedules.hpp did either):\n\n";
+        "the rotation schedules of apps/runner/rotation_schedules.hpp did either; aimed k: in k of those "
+        "episodes omega was <= -0.9 when the tip reached that bifurcation's centre (or when it failed, if "
+        "it went in before), i.e. the tip was bent "
+        "away from the wrong branch and the wire went in anyway):\n\n";
   for (const nlohmann::json& r : e["rows"]) {
     md << "- **" << r["name"].get<std::string>() << "**: ";
     if (r.contains("skipped")) {

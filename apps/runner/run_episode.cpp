@@ -1,5 +1,9 @@
 #include "apps/runner/run_episode.hpp"
 
+#include <cmath>
+#include <limits>
+#include <vector>
+
 #include "engine/task/observation.hpp"
 #include "engine/wire/wire_queries.hpp"
 
@@ -56,14 +60,25 @@ EpisodeTrace run_episode(const NavigationTask& task, int anatomy, int target_id,
   for (const char* name : observation_names()) trace.observation_names.emplace_back(name);
   int frame = 0;
   record_frame(task, s, 0.0, s.in_control, frame, options, trace);
+  // omega when the tip reached each bifurcation centre on the course (goal k belongs to bifurcation k).
+  const std::vector<CourseBifurcation>& bifurcations = s.course->bifurcations;
+  std::vector<double> omega_at_centre(bifurcations.size(), std::numeric_limits<double>::quiet_NaN());
+  std::size_t next_centre = 0;
   for (;;) {
     const bool in_control = s.in_control;
     const double action = in_control ? controller.act(s.obs) : 0.0;
     const StepOutcome out = step_episode(task, s, action, {});
     ++frame;
     record_frame(task, s, action, in_control, frame, options, trace);
+    for (; next_centre < bifurcations.size() && s.progress_mm >= bifurcations[next_centre].arc; ++next_centre)
+      omega_at_centre[next_centre] = s.obs[obs_index::kOmega];
     if (out.terminated || out.truncated) {
       set_outcome(out, trace);
+      if (out.info.wrong_branch) {
+        const auto lost = static_cast<std::size_t>(out.info.goal);
+        const bool reached = lost < omega_at_centre.size() && !std::isnan(omega_at_centre[lost]);
+        trace.omega_at_loss = reached ? omega_at_centre[lost] : s.obs[obs_index::kOmega];
+      }
       break;
     }
   }

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "apps/report/trace_json.hpp"
 #include "apps/runner/controller.hpp"
 #include "apps/runner/episode_batch.hpp"
 #include "apps/runner/evaluation_table.hpp"
@@ -217,6 +218,39 @@ TEST_CASE("run_batch: threads give the same episodes as one thread, and the summ
   CHECK(summary["results"][2]["steps"] == 25);
 }
 
+namespace {
+// Turns the tip's bend towards the wrong branch (omega -> +1) and holds it there: a controller that
+// aims wrong on purpose, so t1's Y is lost with the tip aimed at the wrong branch.
+class AimAtWrongBranch : public gw::Controller {
+ public:
+  const std::string& name() const override { return name_; }
+  double act(const gw::Observation& obs) override { return obs[gw::obs_index::kOmega] < 0.95 ? 1.0 : 0.0; }
+
+ private:
+  std::string name_ = "aim-at-wrong";
+};
+}  // namespace
+
+TEST_CASE("a wrong branch records omega when the tip reached the lost bifurcation", "[runner]") {
+  const ShortT1 t1(0);  // automatic step limit: episodes end at a branch
+  const std::vector<gw::EpisodeRequest> requests = {{0, 1, 3}, {0, 2, 4}};
+  const auto wrong = gw::run_batch(t1.task, requests, [] { return std::make_unique<AimAtWrongBranch>(); }, 1, {});
+  const auto right = gw::run_batch(t1.task, requests, [] { return gw::make_scripted_omega_controller(); }, 1, {});
+  for (std::size_t k = 0; k < requests.size(); ++k) {
+    REQUIRE(wrong[k].outcome == "wrong_branch");
+    CHECK(wrong[k].omega_at_loss > 0.9);  // it was aimed at the wrong branch, and the report can tell
+    REQUIRE(right[k].outcome == "success");
+    CHECK(std::isnan(right[k].omega_at_loss));
+  }
+  const nlohmann::json summary = gw::summarize_episodes(wrong);
+  CHECK(summary["results"][0]["omega_at_loss"].get<double>() == wrong[0].omega_at_loss);
+  CHECK_FALSE(gw::summarize_episodes(right)["results"][0].contains("omega_at_loss"));
+  // The trajectory file keeps it; a success's file has none.
+  const gw::EpisodeTrace back = gw::trace_from_json(gw::trace_to_json(wrong[0]), "test");
+  CHECK(back.omega_at_loss == Approx(wrong[0].omega_at_loss));
+  CHECK(std::isnan(gw::trace_from_json(gw::trace_to_json(right[0]), "test").omega_at_loss));
+}
+
 TEST_CASE("navigation outputs: trajectories, VTK and a biplane PNG per target", "[runner]") {
   const ShortT1 t1(12);
   const auto traces = gw::run_batch(t1.task, gw::plan_episodes(t1.task, 0, "1", 1, 0),
@@ -290,6 +324,15 @@ TEST_CASE("evaluation table: the paper's rows and a Markdown table that says why
                              {"notes", nlohmann::json::array()}, {"results", {{"scripted-omega", summary}}}});
   const std::string why = gw::evaluation_to_markdown(by_hand);
   CHECK(why.find("wrong_branch 3 (coronary T3 goal 2/3 x2, coronary T1 goal 1/2 x1)") != std::string::npos);
+  // With omega at the loss recorded, each place says how many of its losses the controller had aimed.
+  nlohmann::json aimed_row = by_hand;
+  auto& eps = aimed_row["rows"][0]["results"]["scripted-omega"]["results"];
+  eps[1]["omega_at_loss"] = -0.97;  // lost at T3 although bent away from the wrong branch
+  eps[2]["omega_at_loss"] = 0.4;    // lost at T3 bent towards it
+  eps[0]["omega_at_loss"] = -0.9;   // the threshold counts as aimed
+  const std::string aimed = gw::evaluation_to_markdown(aimed_row);
+  CHECK(aimed.find("wrong_branch 3 (coronary T3 goal 2/3 x2 aimed 1, coronary T1 goal 1/2 x1 aimed 1)") !=
+        std::string::npos);
   CHECK(why.find("diverged 1 (coronary T6 x1)") != std::string::npos);
   CHECK(why.find("| coronary-like | 4 | — | — | — | 0% | 94% | — | — |") != std::string::npos);
 

@@ -36,6 +36,11 @@ def test_a_trajectory_becomes_a_png(tmp_path, capsys):
     assert str(png) in capsys.readouterr().out
     episode = plot_episode.load_episode(path)
     assert "wrong_branch" in episode["title"] and list(episode["goal"]).count(1) == 15
+    assert "at the lost bifurcation" not in episode["title"]  # a file without omega_at_loss still loads
+    aimed = trajectory()
+    aimed["omega_at_loss"] = -0.993
+    path.write_text(json.dumps(aimed))
+    assert "omega -0.99 at the lost bifurcation" in plot_episode.load_episode(path)["title"]
 
 
 def test_files_that_cannot_be_plotted_are_named(tmp_path, capsys):

@@ -44,7 +44,9 @@ def load_episode(path: Path) -> dict:
             raise ValueError(f"{path}: observation {needed!r} missing (names: {', '.join(names)})")
     return {
         "title": f"{trace['anatomy']} target {trace['target_id']}, seed {trace['seed']}, {trace['controller']}: "
-                 f"{trace['outcome']}" + (f" ({trace['detail']})" if trace.get("detail") else ""),
+                 f"{trace['outcome']}" + (f" ({trace['detail']})" if trace.get("detail") else "")
+                 + (f", omega {trace['omega_at_loss']:+.2f} at the lost bifurcation"
+                    if isinstance(trace.get("omega_at_loss"), (int, float)) else ""),
         "column": column,
         "action": np.asarray([np.nan if v is None else v for v in frames["action"]], dtype=float),
         "in_control": np.asarray(frames["agent_in_control"], dtype=bool),

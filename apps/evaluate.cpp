@@ -13,6 +13,33 @@
 #include "apps/runner/evaluation_table.hpp"
 #include "engine/task/anatomy.hpp"
 
+namespace {
+
+// A results.json an earlier run wrote; throws naming the file when it is unreadable or not one.
+nlohmann::json read_results(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("--from-json: cannot read '" + path + "'");
+  nlohmann::json result;
+  try {
+    result = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error("--from-json: '" + path + "' is not JSON: " + e.what());
+  }
+  if (!result.contains("rows") || !result["rows"].is_array())
+    throw std::runtime_error("--from-json: '" + path + "' has no \"rows\" array (not an evaluate results.json)");
+  return result;
+}
+
+// results.md in `out_dir`, and the same table on stdout.
+void write_markdown(const nlohmann::json& result, const std::string& out_dir) {
+  const std::string md = gw::evaluation_to_markdown(result);
+  std::filesystem::create_directories(out_dir);
+  gw::write_file_atomic(out_dir + "/results.md", md);
+  std::cout << md;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"Reproduce the paper's results table with the shipped policy and two baselines"};
   gw::EvaluationOptions o;
@@ -47,19 +74,7 @@ int main(int argc, char** argv) {
   try {
     if (!from_json.empty()) {
       // The report's format changes more often than the episodes are worth re-running (32 min).
-      std::ifstream in(from_json);
-      if (!in) throw std::runtime_error("--from-json: cannot read '" + from_json + "'");
-      nlohmann::json result;
-      try {
-        result = nlohmann::json::parse(in);
-      } catch (const nlohmann::json::exception& e) {
-        throw std::runtime_error("--from-json: '" + from_json + "' is not JSON: " + e.what());
-      }
-      if (!result.contains("rows") || !result["rows"].is_array())
-        throw std::runtime_error("--from-json: '" + from_json + "' has no \"rows\" array (not an evaluate results.json)");
-      std::filesystem::create_directories(out_dir);
-      gw::write_file_atomic(out_dir + "/results.md", gw::evaluation_to_markdown(result));
-      std::cout << gw::evaluation_to_markdown(result);
+      write_markdown(read_results(from_json), out_dir);
       return 0;
     }
     if (centerlines != "extract" && centerlines != "truth")
@@ -85,8 +100,7 @@ int main(int argc, char** argv) {
     const nlohmann::json result = gw::run_evaluation(rows, o);
     std::filesystem::create_directories(out_dir);
     gw::write_file_atomic(out_dir + "/results.json", result.dump(2) + "\n");
-    gw::write_file_atomic(out_dir + "/results.md", gw::evaluation_to_markdown(result));
-    std::cout << gw::evaluation_to_markdown(result);
+    write_markdown(result, out_dir);
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";

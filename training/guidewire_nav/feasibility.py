@@ -10,7 +10,7 @@ inner side of a bend, beyond the tip's lateral reach), not the controller. The r
 
 Schedules (omega = observation 9; +1 = tip bent towards the wrong branch):
   aim-0.95 / aim-0.7   turn at full rate while omega > threshold, then hold (the scripted baseline
-                       uses -0.7); aim-0.95-ccw the same turning the other way
+                       of `navigate`/`evaluate` is aim-0.95); aim-0.95-ccw the same turning the other way
   spin+-0.3, spin+-1   constant rotation rate (fraction of one turn per second)
   wiggle               a = sin(0.3 k), sweeping back and forth
 A case counts as reachable when any schedule reaches it from any of the seeds.

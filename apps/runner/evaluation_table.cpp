@@ -87,6 +87,21 @@ nlohmann::json row_reachability(const NavigationTask& task, const nlohmann::json
 
 }  // namespace
 
+std::vector<Anatomy> load_row_anatomies(const EvaluationRow& row, const EvaluationOptions& o) {
+  std::vector<Anatomy> anatomies;
+  for (const std::string& name : row.anatomies) {
+    const std::vector<AnatomySource> src = resolve_anatomy_sources(name, o.index_path);
+    NavigationAnatomyOptions load;
+    if (!o.extract_centerlines) load.centerline_path = src.at(0).truth;
+    // The insertion point is the user's input, not the extraction's guess: take it from the truth.
+    load.inlet = read_centerline(src.at(0).truth).inlet.position;
+    NavigationAnatomy nav = load_navigation_anatomy(src.at(0).mesh, load);
+    nav.anatomy.name = name;
+    anatomies.push_back(std::move(nav.anatomy));
+  }
+  return anatomies;
+}
+
 nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const EvaluationOptions& o) {
   nlohmann::json out_rows = nlohmann::json::array();
   for (const EvaluationRow& row : rows) {
@@ -97,17 +112,7 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
                         {"notes", nlohmann::json::array()}};
     const std::string policy = row.base_policy ? o.base_policy : o.policy;
     try {
-      std::vector<Anatomy> anatomies;
-      for (const std::string& name : row.anatomies) {
-        const std::vector<AnatomySource> src = resolve_anatomy_sources(name, o.index_path);
-        NavigationAnatomyOptions load;
-        if (!o.extract_centerlines) load.centerline_path = src.at(0).truth;
-        // The insertion point is the user's input, not the extraction's guess: take it from the truth.
-        load.inlet = read_centerline(src.at(0).truth).inlet.position;
-        NavigationAnatomy nav = load_navigation_anatomy(src.at(0).mesh, load);
-        nav.anatomy.name = name;
-        anatomies.push_back(std::move(nav.anatomy));
-      }
+      const std::vector<Anatomy> anatomies = load_row_anatomies(row, o);
       TaskConfig base_config;
       base_config.intermediate_target_mm = o.intermediate_target_mm;
       const NavigationTask default_task = make_navigation_task(base_config, default_wire_params(), anatomies);

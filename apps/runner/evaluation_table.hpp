@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/task/anatomy.hpp"
 #include "engine/task/task_config.hpp"
 
 namespace gw {
@@ -37,6 +38,11 @@ struct EvaluationOptions {
   int reachability_seeds = 2;
   double intermediate_target_mm = TaskConfig{}.intermediate_target_mm;  // trees (task_config.hpp)
 };
+
+// A row's anatomies as the table runs them: centerlines extracted (or the truth when
+// !extract_centerlines), the insertion point from each anatomy's truth, named as in the index.
+// Throws std::runtime_error naming an anatomy the index lacks or a mesh that cannot be loaded.
+std::vector<Anatomy> load_row_anatomies(const EvaluationRow& row, const EvaluationOptions& options);
 
 // Runs the rows and returns {"rows": [{name, episodes, paper, results: {controller: summary}, notes,
 // reachability: [{anatomy, target, reachable, ...}] for the targets no controller reached}], "settings": ...}. Rows whose anatomy or policy is missing are kept with a "skipped" reason.

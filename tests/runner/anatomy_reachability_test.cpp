@@ -5,27 +5,21 @@
 // reached by some rotation schedule of apps/runner/rotation_schedules.hpp from the first three seeds,
 // on the centerlines the table uses (extracted with CGAL MCF, cached on disk after the first run).
 #include <catch2/catch.hpp>
-#include <set>
 #include <sstream>
 
 #include "apps/runner/evaluation_table.hpp"
-#include "apps/runner/navigation_anatomy.hpp"
 #include "apps/runner/reachability.hpp"
 #include "engine/task/anatomy.hpp"
 #include "engine/task/navigation_task.hpp"
 #include "engine/wire/wire_params.hpp"
 
 TEST_CASE("every target of the results table's anatomies can be reached by rotation alone", "[runner][anatomy]") {
-  const std::string index = gw::default_anatomy_index();  // GW_ANATOMY_INDEX can point at another set
-  std::set<std::string> names;
-  for (const gw::EvaluationRow& row : gw::paper_table())
-    for (const std::string& name : row.anatomies) names.insert(name);
-  REQUIRE(names.size() == 13);  // 4 training, 5 sensitivity variants, 2 trees, the coronary and its deformed copy
-
+  gw::EvaluationOptions table;
+  table.index_path = gw::default_anatomy_index();  // GW_ANATOMY_INDEX can point at another set
   std::vector<gw::Anatomy> anatomies;
-  for (const std::string& name : names)
-    for (const gw::AnatomySource& s : gw::resolve_anatomy_sources(name, index))
-      anatomies.push_back(gw::load_navigation_anatomy(s.mesh).anatomy);
+  for (const gw::EvaluationRow& row : gw::paper_table())
+    for (gw::Anatomy& a : gw::load_row_anatomies(row, table)) anatomies.push_back(std::move(a));
+  REQUIRE(anatomies.size() == 13);  // 4 training, 5 sensitivity variants, 2 trees, the coronary and its deformed copy
 
   std::vector<gw::ReachabilityCase> cases;
   for (int a = 0; a < static_cast<int>(anatomies.size()); ++a)

@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <thread>
 #include <unistd.h>
@@ -112,8 +113,11 @@ int main(int argc, char** argv) {
     summary["intermediate_target_mm"] = intermediate_target_mm;
     summary["wall_time_s"] = wall;
     if (!out_dir.empty()) {
-      const std::vector<std::string> title = {nav.anatomy.name + " | " + summary["controller"].get<std::string>() +
-                                              " | seed " + std::to_string(seed)};
+      // The PNG's own summary line names anatomy, target, controller and (for one episode) the seed; this
+      // line adds what it cannot: the actor file and, for batches, where the seeds start.
+      std::string line = controller_kind == "policy" ? "policy " + std::filesystem::path(policy).filename().string() : summary["controller"].get<std::string>();
+      if (requests.size() > 1) line += " | seeds from " + std::to_string(seed);
+      const std::vector<std::string> title = {line};
       summary["files"] = gw::write_navigation_outputs(out_dir, nav, traces, title);
     }
 

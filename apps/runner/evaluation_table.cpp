@@ -85,6 +85,59 @@ nlohmann::json row_reachability(const NavigationTask& task, const nlohmann::json
   return out;
 }
 
+std::string episode_key(const nlohmann::json& ep) {
+  return target_key(ep["anatomy"].get<std::string>(), ep["target"].get<int>()) + " seed " +
+         std::to_string(ep["seed"].get<std::uint64_t>());
+}
+
+// Per episode (anatomy, target, seed): did some column reach it, and if none did, does some rotation
+// schedule from the same start? The action is only the rotation rate, so the share this reaches is what
+// a rotation-only controller can be shown to get on these very episodes: a row that falls short of
+// the paper although its controllers reach nearly every episode this reaches is the anatomy's, not the
+// controller's. Episodes no schedule reaches are listed.
+nlohmann::json row_ceiling(const NavigationTask& task, const nlohmann::json& results, int threads) {
+  std::map<std::string, bool> reached;
+  std::map<std::string, nlohmann::json> start;
+  for (const auto& [column, summary] : results.items())
+    for (const nlohmann::json& ep : summary["results"]) {
+      const std::string key = episode_key(ep);
+      reached[key] = reached[key] || ep["outcome"] == "success";
+      start[key] = {{"anatomy", ep["anatomy"]}, {"target", ep["target"]}, {"seed", ep["seed"]}};
+    }
+  std::vector<std::string> keys;
+  std::vector<ReachabilityCase> cases;
+  int by_controller = 0;
+  for (const auto& [key, ok] : reached) {
+    if (ok) {
+      ++by_controller;
+      continue;
+    }
+    const nlohmann::json& s = start[key];
+    keys.push_back(key);
+    cases.push_back({find_anatomy(task, s["anatomy"].get<std::string>()), s["target"].get<int>(),
+                     s["seed"].get<std::uint64_t>()});
+  }
+  const std::vector<Reachability> verdicts = probe_reachability(task, cases, 1, threads);
+  nlohmann::json by_schedule = nlohmann::json::array(), unreached = nlohmann::json::array();
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    nlohmann::json s = start[keys[i]];
+    if (!verdicts[i].error.empty()) {
+      s["error"] = verdicts[i].error;
+      unreached.push_back(s);
+    } else if (verdicts[i].reachable) {
+      s["schedule"] = verdicts[i].schedule;
+      by_schedule.push_back(s);
+    } else {
+      unreached.push_back(s);
+    }
+  }
+  return {{"episodes", reached.size()},
+          {"reached", by_controller + static_cast<int>(by_schedule.size())},
+          {"reached_by_a_controller", by_controller},
+          {"reached_only_by_a_schedule", by_schedule},
+          {"reached_by_none", unreached}};
+}
+
 }  // namespace
 
 std::vector<Anatomy> load_row_anatomies(const EvaluationRow& row, const EvaluationOptions& o) {
@@ -139,6 +192,7 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
         r["results"][column] = summary;
       }
       r["reachability"] = row_reachability(default_task, r["results"], o.reachability_seeds, o.threads);
+      if (o.reachability_seeds > 0) r["ceiling"] = row_ceiling(default_task, r["results"], o.threads);
     } catch (const std::exception& e) {
       r["skipped"] = e.what();
     }
@@ -180,6 +234,25 @@ std::string reachable_percent(const nlohmann::json& row) {
   std::ostringstream s;
   s << std::fixed << std::setprecision(0) << 100.0 * ok / n << "% (" << ok << "/" << n << ")";
   return s.str();
+}
+
+// Episodes some controller of the row or some rotation schedule reached: "86% (43/50)", or "—".
+std::string ceiling_percent(const nlohmann::json& row) {
+  if (!row.contains("ceiling")) return "—";
+  const int n = row["ceiling"]["episodes"].get<int>(), ok = row["ceiling"]["reached"].get<int>();
+  if (n == 0) return "—";
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(0) << 100.0 * ok / n << "% (" << ok << "/" << n << ")";
+  return s.str();
+}
+
+// Keys ("anatomy Tn seed s") of the row's episodes that nothing reached (row_ceiling).
+std::set<std::string> out_of_reach_episodes(const nlohmann::json& row) {
+  std::set<std::string> out;
+  if (row.contains("ceiling"))
+    for (const nlohmann::json& ep : row["ceiling"]["reached_by_none"])
+      if (!ep.contains("error")) out.insert(episode_key(ep));
+  return out;
 }
 
 // The 95% Wilson interval of a column's success rate: "76-94%", or "—".
@@ -230,12 +303,14 @@ struct PlaceCount {
   int episodes = 0;
   int measured = 0;  // episodes that carry omega_at_loss
   int aimed = 0;
+  int out_of_reach = 0;  // episodes no controller of the row and no rotation schedule reached
 };
 
 // "wrong_branch 9 (t3 T1 goal 1/1 x5 aimed 5, t4 T2 goal 1/1 x4 aimed 1), diverged 1 (...)": counts per
 // outcome, and per outcome the anatomy, target and bifurcation where they happened, most frequent first;
 // for wrong branches, how many of them the controller had aimed (kAimedOmega).
-std::string failure_modes(const nlohmann::json& summary, const std::set<std::string>& unreachable) {
+std::string failure_modes(const nlohmann::json& summary, const std::set<std::string>& unreachable,
+                          const std::set<std::string>& out_of_reach) {
   std::string text;
   for (const auto& [outcome, count] : summary["outcomes"].items()) {
     if (outcome == "success" || count.get<int>() == 0) continue;
@@ -250,6 +325,7 @@ std::string failure_modes(const nlohmann::json& summary, const std::set<std::str
         if (no_rotation_reaches) place += " [unreachable]";
         PlaceCount& c = places[place];
         ++c.episodes;
+        if (ep.contains("seed") && out_of_reach.count(episode_key(ep))) ++c.out_of_reach;
         if (ep.contains("omega_at_loss") && ep["omega_at_loss"].is_number()) {
           ++c.measured;
           c.aimed += ep["omega_at_loss"].get<double>() <= kAimedOmega;
@@ -265,6 +341,7 @@ std::string failure_modes(const nlohmann::json& summary, const std::set<std::str
         const PlaceCount& c = sorted[i].second;
         text += (i ? ", " : "") + sorted[i].first + " x" + std::to_string(c.episodes);
         if (c.measured > 0) text += " aimed " + std::to_string(c.aimed);
+        if (c.out_of_reach > 0) text += " out-of-reach " + std::to_string(c.out_of_reach);
       }
       text += ")";
     }
@@ -277,25 +354,30 @@ std::string failure_modes(const nlohmann::json& summary, const std::set<std::str
 std::string evaluation_to_markdown(const nlohmann::json& e) {
   std::ostringstream md;
   md << "| case | episodes | SAC (ours) | SAC, 95% interval | push-only | scripted omega | paper | "
-        "SAC, reachable targets | SAC vs scripted, same episodes |\n"
-        "|---|---|---|---|---|---|---|---|---|\n";
+        "SAC, reachable targets | SAC vs scripted, same episodes | reached by a controller or rotation schedule |\n"
+        "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const nlohmann::json& r : e["rows"]) {
     const nlohmann::json& res = r["results"];
     md << "| " << r["name"].get<std::string>() << " | " << r["episodes"].get<int>() << " | "
        << percent(res, "sac-policy") << " | " << interval(res, "sac-policy") << " | " << percent(res, "push-only")
        << " | " << percent(res, "scripted-omega") << " | " << std::lround(100.0 * r["paper"].get<double>()) << "% | "
-       << reachable_percent(r) << " | " << sac_vs_scripted(res) << " |\n";
+       << reachable_percent(r) << " | " << sac_vs_scripted(res) << " | " << ceiling_percent(r) << " |\n";
   }
   md << "\nSAC, 95% interval: Wilson score interval of SAC's rate over the row's episodes. SAC vs scripted: "
         "episodes SAC reached and the scripted omega controller did not (won) and the reverse (lost), with the "
-        "exact two-sided sign test on those (p < 0.05: unlikely to be the luck of the seeds).\n";
+        "exact two-sided sign test on those (p < 0.05: unlikely to be the luck of the seeds). Reached by a "
+        "controller or rotation schedule: episodes (same anatomy, target and start) that some column reached, "
+        "or, where none did, one of the 8 rotation schedules of apps/runner/rotation_schedules.hpp; the "
+        "action is only the rotation rate, so this is what rotation alone is shown to reach on these "
+        "episodes.\n";
   md << "\nFailure modes (episodes that did not reach the target, by outcome; in brackets the anatomy, "
         "target and, for a wrong branch, the goal (bifurcation on the path, k of n) it was lost before; "
         "[unreachable]: no controller of the row reached that target and none of "
         "the rotation schedules of apps/runner/rotation_schedules.hpp did either; aimed k: in k of those "
         "episodes omega was <= -0.9 when the tip reached that bifurcation's centre (or when it failed, if "
         "it went in before), i.e. the tip was bent "
-        "away from the wrong branch and the wire went in anyway):\n\n";
+        "away from the wrong branch and the wire went in anyway; out-of-reach k: k of those episodes "
+        "neither a controller of the row nor a rotation schedule reached from the same start):\n\n";
   for (const nlohmann::json& r : e["rows"]) {
     md << "- **" << r["name"].get<std::string>() << "**: ";
     if (r.contains("skipped")) {
@@ -303,9 +385,9 @@ std::string evaluation_to_markdown(const nlohmann::json& e) {
       continue;
     }
     std::string sep;
-    const std::set<std::string> unreachable = unreachable_targets(r);
+    const std::set<std::string> unreachable = unreachable_targets(r), out_of_reach = out_of_reach_episodes(r);
     for (const auto& [column, summary] : r["results"].items()) {
-      md << sep << column << ": " << failure_modes(summary, unreachable);
+      md << sep << column << ": " << failure_modes(summary, unreachable, out_of_reach);
       sep = "; ";
     }
     for (const auto& note : r["notes"]) md << sep << note.get<std::string>();

@@ -45,12 +45,17 @@ struct EvaluationOptions {
 std::vector<Anatomy> load_row_anatomies(const EvaluationRow& row, const EvaluationOptions& options);
 
 // Runs the rows and returns {"rows": [{name, episodes, paper, results: {controller: summary}, notes,
-// reachability: [{anatomy, target, reachable, ...}] for the targets no controller reached}], "settings": ...}. Rows whose anatomy or policy is missing are kept with a "skipped" reason.
+// reachability: [{anatomy, target, reachable, ...}] for the targets no controller reached, ceiling: {episodes,
+// reached, reached_by_a_controller, reached_only_by_a_schedule: [{anatomy, target, seed, schedule}],
+// reached_by_none: [{anatomy, target, seed}]} (each episode no column reached, re-run from the same start
+// with the rotation schedules; both only when reachability_seeds > 0)}], "settings": ...}. Rows whose
+// anatomy or policy is missing are kept with a "skipped" reason.
 nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const EvaluationOptions& options);
 
 // The table as Markdown: case | episodes | SAC | push-only | scripted omega | paper | SAC on reachable
-// targets, then per row the failure modes seen (outcome counts, places, unreachable targets marked) so a
-// short row says why, not only how much.
+// targets | SAC vs scripted | reached by a controller or rotation schedule, then per row the failure
+// modes seen (outcome counts, places, unreachable targets and out-of-reach episodes marked) so a short
+// row says why, not only how much.
 std::string evaluation_to_markdown(const nlohmann::json& evaluation);
 
 }  // namespace gw

@@ -16,14 +16,14 @@ Reachability probe_one(const NavigationTask& task, const ReachabilityCase& c, in
   TraceOptions trace;
   trace.wire_shape_every = 0;
   for (const std::string& name : rotation_schedule_names())
-    for (int seed = 0; seed < seeds; ++seed) {
+    for (int k = 0; k < seeds; ++k) {
+      const std::uint64_t seed = c.first_seed + static_cast<std::uint64_t>(k);
       auto schedule = make_rotation_schedule(name);
       ++r.episodes;
-      if (run_episode(task, c.anatomy, c.target_id, static_cast<std::uint64_t>(seed), *schedule, trace).outcome ==
-          "success") {
+      if (run_episode(task, c.anatomy, c.target_id, seed, *schedule, trace).outcome == "success") {
         r.reachable = true;
         r.schedule = name;
-        r.seed = static_cast<std::uint64_t>(seed);
+        r.seed = seed;
         return r;
       }
     }

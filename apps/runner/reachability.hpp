@@ -15,6 +15,7 @@ namespace gw {
 struct ReachabilityCase {
   int anatomy = 0;    // index into task.anatomies
   int target_id = 0;
+  std::uint64_t first_seed = 0;  // starts tried: first_seed .. first_seed + seeds - 1
 };
 
 struct Reachability {
@@ -25,7 +26,7 @@ struct Reachability {
   std::string error;        // set when an episode threw (the case is then not judged reachable)
 };
 
-// Schedules in rotation_schedule_names() order, seeds 0..seeds-1 each; cases run in parallel on
+// Schedules in rotation_schedule_names() order, each from the case's seeds; cases run in parallel on
 // `threads` threads. Results in case order.
 std::vector<Reachability> probe_reachability(const NavigationTask& task, const std::vector<ReachabilityCase>& cases,
                                              int seeds, int threads);

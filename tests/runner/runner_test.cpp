@@ -358,6 +358,51 @@ TEST_CASE("evaluation table: the paper's rows and a Markdown table that says why
   CHECK(marked.find("| won 2, lost 0 (p 0.50) |") != std::string::npos);
   CHECK(marked.find("coronary T3 goal 2/3 [unreachable] x2") != std::string::npos);
   CHECK(marked.find("coronary T1 goal 1/2 x1") != std::string::npos);
+
+  // Episodes nothing reached from their start are counted where they were lost; the row's ceiling is shown.
+  by_hand["rows"][0]["ceiling"] = {{"episodes", 4}, {"reached", 3}, {"reached_by_a_controller", 2},
+                                   {"reached_only_by_a_schedule", {{{"anatomy", "coronary"}, {"target", 3},
+                                                                    {"seed", 2}, {"schedule", "spin-1"}}}},
+                                   {"reached_by_none", {{{"anatomy", "coronary"}, {"target", 3}, {"seed", 1}}}}};
+  const std::string ceiling = gw::evaluation_to_markdown(by_hand);
+  CHECK(ceiling.find("| won 2, lost 0 (p 0.50) | 75% (3/4) |") != std::string::npos);
+  CHECK(ceiling.find("coronary T3 goal 2/3 [unreachable] x2 out-of-reach 1") != std::string::npos);
+}
+
+TEST_CASE("the table's ceiling: episodes no controller reached are re-run from the same start with the rotation "
+          "schedules",
+          "[runner]") {
+  gw::EvaluationOptions o;
+  o.index_path = std::string(GW_SOURCE_DIR) + "/anatomies/index.json";
+  o.controllers = {"push-only"};  // reaches a target about half the time: leaves episodes to probe
+  o.extract_centerlines = false;
+  o.episode_scale = 0.06;  // 6 episodes
+  o.reachability_seeds = 1;
+  o.threads = 2;
+  const gw::EvaluationRow row{"t1", {"t1_straight_y"}, 100, 0.95, false};
+  const nlohmann::json e = gw::run_evaluation({row}, o);
+  const nlohmann::json& r = e["rows"][0];
+  REQUIRE(r.contains("ceiling"));
+  const nlohmann::json& c = r["ceiling"];
+  const int push = r["results"]["push-only"]["successes"];
+  CHECK(c["episodes"] == 6);
+  CHECK(c["reached_by_a_controller"] == push);
+  CHECK(c["reached"].get<int>() ==
+        push + static_cast<int>(c["reached_only_by_a_schedule"].size()));
+  CHECK(c["reached"].get<int>() + static_cast<int>(c["reached_by_none"].size()) == 6);
+  // t1's targets are reached by the scripted rule from every start (results table): push-only's losses are
+  // the controller's, and a schedule finds each of them.
+  INFO("push-only " << push << "/6");
+  REQUIRE(push < 6);
+  CHECK(c["reached"] == 6);
+  // Each is the schedule's own episode: re-run alone from that seed, it reaches the target.
+  const std::vector<gw::Anatomy> anatomies = gw::load_row_anatomies(row, o);
+  const gw::NavigationTask task = gw::make_navigation_task(gw::TaskConfig{}, gw::default_wire_params(), anatomies);
+  for (const nlohmann::json& ep : c["reached_only_by_a_schedule"]) {
+    auto schedule = gw::make_rotation_schedule(ep["schedule"].get<std::string>());
+    CHECK(gw::run_episode(task, 0, ep["target"].get<int>(), ep["seed"].get<std::uint64_t>(), *schedule, {}).outcome ==
+          "success");
+  }
 }
 
 TEST_CASE("success statistics: Wilson intervals and the paired sign test", "[runner]") {

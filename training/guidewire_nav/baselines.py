@@ -33,33 +33,23 @@ class PushOnly:
 
 
 class OmegaController:
-    """Rotates until the tip bends away from the wrong branch (omega low), then holds.
+    """Turns at full rate until the tip bends away from the wrong branch, then holds.
 
-    omega = k_p . w_p is +1 when the tip bends towards the wrong branch and -1 when it bends away. The
-    controller turns while omega is above `threshold`, at a rate proportional to the excess, and
-    reverses when omega grew since the last step despite turning (the shorter way round, and the
-    proximal-to-tip torsional lag makes omega respond late)."""
+    omega = k_p . w_p is +1 when the tip bends towards the wrong branch and -1 when it bends away.
+    Turning one way at a constant rate sweeps the bend round until omega drops to `release`. The same
+    rule as the C++ `scripted-omega` controller of navigate and evaluate (apps/runner/controller.cpp),
+    so a number from here and one from the results table mean the same baseline."""
 
     name = "omega_scripted"
 
-    def __init__(self, threshold: float = -0.6, gain: float = 1.5):
-        self.threshold, self.gain = threshold, gain
-        self.reset()
+    def __init__(self, release: float = -0.95):
+        self.release = release
 
     def reset(self) -> None:
-        self.direction = 1.0
-        self.previous: float | None = None
-        self.last_action = 0.0
+        pass
 
     def __call__(self, obs: np.ndarray) -> float:
-        omega = float(obs[OMEGA])
-        if self.previous is not None and self.last_action != 0.0 and omega > self.previous + 0.02:
-            self.direction = -self.direction
-        self.previous = omega
-        excess = omega - self.threshold
-        action = 0.0 if excess <= 0 else self.direction * min(1.0, self.gain * excess)
-        self.last_action = action
-        return action
+        return 1.0 if float(obs[OMEGA]) > self.release else 0.0
 
 
 CONTROLLERS = {"push_only": PushOnly, "omega_scripted": OmegaController}

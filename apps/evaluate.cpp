@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
   CLI::App app{"Reproduce the paper's results table with the shipped policy and two baselines"};
   gw::EvaluationOptions o;
   o.policy = gw::default_policy_path();
-  o.base_policy = std::filesystem::path(o.policy).replace_filename("sac_actor_base.json").string();
+  o.base_policy = gw::base_policy_path(o.policy);
   o.index_path = gw::default_anatomy_index();
   o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   std::string out_dir = "results", rows_filter, centerlines = "extract";

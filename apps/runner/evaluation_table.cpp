@@ -220,6 +220,14 @@ std::set<std::string> unreachable_targets(const nlohmann::json& row) {
   return out;
 }
 
+// "95% (38/40)", or "—" for no episodes.
+std::string share(int ok, int n) {
+  if (n == 0) return "—";
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(0) << 100.0 * ok / n << "% (" << ok << "/" << n << ")";
+  return s.str();
+}
+
 // SAC's success over the episodes whose target some rotation reaches: "95% (38/40)", or "—".
 std::string reachable_percent(const nlohmann::json& row) {
   if (!row["results"].contains("sac-policy") || !row.contains("reachability")) return "—";
@@ -230,20 +238,13 @@ std::string reachable_percent(const nlohmann::json& row) {
     ++n;
     ok += ep["outcome"] == "success";
   }
-  if (n == 0) return "—";
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(0) << 100.0 * ok / n << "% (" << ok << "/" << n << ")";
-  return s.str();
+  return share(ok, n);
 }
 
 // Episodes some controller of the row or some rotation schedule reached: "86% (43/50)", or "—".
 std::string ceiling_percent(const nlohmann::json& row) {
   if (!row.contains("ceiling")) return "—";
-  const int n = row["ceiling"]["episodes"].get<int>(), ok = row["ceiling"]["reached"].get<int>();
-  if (n == 0) return "—";
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(0) << 100.0 * ok / n << "% (" << ok << "/" << n << ")";
-  return s.str();
+  return share(row["ceiling"]["reached"].get<int>(), row["ceiling"]["episodes"].get<int>());
 }
 
 // Keys ("anatomy Tn seed s") of the row's episodes that nothing reached (row_ceiling).

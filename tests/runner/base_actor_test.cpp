@@ -12,7 +12,7 @@
 TEST_CASE("the shipped base-only actor reaches its training bifurcation where push-only does not",
           "[runner][policy]") {
   const std::filesystem::path shipped = gw::default_policy_path();
-  const std::filesystem::path base = std::filesystem::path(shipped).replace_filename("sac_actor_base.json");
+  const std::filesystem::path base = gw::base_policy_path(shipped.string());  // what evaluate loads
   REQUIRE(std::filesystem::exists(base));
 
   gw::EvaluationOptions o;

@@ -61,12 +61,12 @@ int main(int argc, char** argv) {
   app.add_option("--threads", o.threads, "episodes run in parallel");
   app.add_option("--rows", rows_filter, "only rows whose name contains this text");
   app.add_option("--out", out_dir, "folder for results.md and results.json");
-  std::string controllers = "policy,push-only,scripted-omega";
+  std::string controllers = "policy,push-only,scripted-omega,scripted-omega-ccw";
   app.add_option("--reachability-seeds", o.reachability_seeds,
                  "probe targets no controller reached with 8 rotation schedules from this many seeds (0 = skip)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--controllers", controllers, "comma-separated columns: policy, push-only, scripted-omega");
+  app.add_option("--controllers", controllers, "comma-separated columns: policy, push-only, scripted-omega, scripted-omega-ccw (the scripted rule turning the other way)");
   std::string from_json;
   app.add_option("--from-json", from_json,
                  "run nothing: write results.md (to --out) again from a results.json an earlier run wrote");
@@ -88,9 +88,9 @@ int main(int argc, char** argv) {
       a = b + 1;
     }
     for (const std::string& c : o.controllers)
-      if (c != "policy" && c != "push-only" && c != "scripted-omega")
+      if (c != "policy" && c != "push-only" && c != "scripted-omega" && c != "scripted-omega-ccw")
         throw std::invalid_argument("--controllers: unknown controller '" + c +
-                                    "' (expected policy, push-only or scripted-omega)");
+                                    "' (expected policy, push-only, scripted-omega or scripted-omega-ccw)");
     if (o.controllers.empty()) throw std::invalid_argument("--controllers names no controller");
     if (!std::filesystem::exists(o.base_policy)) o.base_policy.clear();
     std::vector<gw::EvaluationRow> rows;

@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed, "episode k uses seed S+k: same seed, same episode");
   app.add_option("--policy", policy, "actor JSON (default: the shipped policy/trained/sac_actor.json)");
   app.add_option("--controller", controller_kind,
-                 "policy | push-only | scripted-omega (baselines) | a rotation schedule: " +
+                 "policy | push-only | scripted-omega | scripted-omega-ccw (baselines) | a rotation schedule: " +
                      gw::rotation_schedule_list());
   app.add_option("--inlet", inlet_text, "x,y,z near the insertion point (default: the widest vessel end)");
   app.add_option("--scale", load.scale, "multiply coordinates (1000 for metres -> mm)");

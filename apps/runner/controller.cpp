@@ -60,17 +60,19 @@ class PushOnlyController final : public Controller {
 
 class ScriptedOmegaController final : public Controller {
  public:
-  explicit ScriptedOmegaController(double release) : release_(release) {}
+  ScriptedOmegaController(double release, double turn)
+      : name_(turn < 0 ? "scripted-omega-ccw" : "scripted-omega"), release_(release), turn_(turn) {}
   const std::string& name() const override { return name_; }
   double act(const Observation& obs) override {
     // omega = +1: the tip bends straight at the wrong branch; -1: straight away from it. Turning
     // one way at a constant rate sweeps the bend direction round until omega drops below release.
-    return obs[obs_index::kOmega] > release_ ? 1.0 : 0.0;
+    return obs[obs_index::kOmega] > release_ ? turn_ : 0.0;
   }
 
  private:
-  std::string name_ = "scripted-omega";
+  std::string name_;
   double release_;
+  double turn_;
 };
 
 }  // namespace
@@ -79,18 +81,20 @@ std::unique_ptr<Controller> make_policy_controller(const std::string& actor_path
   return std::make_unique<PolicyController>(actor_path);
 }
 std::unique_ptr<Controller> make_push_only_controller() { return std::make_unique<PushOnlyController>(); }
-std::unique_ptr<Controller> make_scripted_omega_controller(double release) {
-  return std::make_unique<ScriptedOmegaController>(release);
+std::unique_ptr<Controller> make_scripted_omega_controller(double release, double turn) {
+  if (!(turn == 1.0 || turn == -1.0)) throw std::invalid_argument("scripted omega: turn must be +1 or -1");
+  return std::make_unique<ScriptedOmegaController>(release, turn);
 }
 
 std::unique_ptr<Controller> make_controller(const std::string& kind, const std::string& actor_path) {
   if (kind == "policy" || kind == "sac-policy") return make_policy_controller(actor_path);
   if (kind == "push-only") return make_push_only_controller();
   if (kind == "scripted-omega") return make_scripted_omega_controller();
+  if (kind == "scripted-omega-ccw") return make_scripted_omega_controller(-0.95, -1.0);
   const auto& schedules = rotation_schedule_names();
   if (std::find(schedules.begin(), schedules.end(), kind) != schedules.end()) return make_rotation_schedule(kind);
   throw std::invalid_argument("unknown controller '" + kind +
-                              "' (expected policy, push-only, scripted-omega or a rotation schedule: " +
+                              "' (expected policy, push-only, scripted-omega, scripted-omega-ccw or a rotation schedule: " +
                               rotation_schedule_list() + ")");
 }
 

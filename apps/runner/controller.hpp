@@ -34,9 +34,14 @@ std::unique_ptr<Controller> make_push_only_controller();
 // 18 degrees of straight away: measured 2026-11-27 (25-50 episodes per row), it beat -0.7 on var1
 // (80 vs 60%), var2 (100 vs 96%), coronary (92 vs 76%) and deformed coronary (64 vs 56%) and tied
 // elsewhere; a looser release leaves the tip half-aimed at shallow branches.
-std::unique_ptr<Controller> make_scripted_omega_controller(double release = -0.95);
+// omega says how far the bend is from the wrong branch, not on which side, so the rule turns one fixed
+// way: `turn` +1 ("scripted-omega") or -1 ("scripted-omega-ccw", the same rule mirrored). Where it stops
+// (just short of -1, on the side it came from) depends on that choice, and on a shallow fork that side
+// can decide the branch: the table runs both so a baseline's lead is not read as skill when it is the
+// direction (coronary, 2026-11-30: 56 vs 49 of 60 episodes).
+std::unique_ptr<Controller> make_scripted_omega_controller(double release = -0.95, double turn = 1.0);
 
-// "policy" (needs `actor_path`) | "push-only" | "scripted-omega" | a rotation schedule
+// "policy" (needs `actor_path`) | "push-only" | "scripted-omega" | "scripted-omega-ccw" | a rotation schedule
 // (rotation_schedules.hpp: aim-0.95, spin+1, wiggle, ...); throws std::invalid_argument otherwise.
 std::unique_ptr<Controller> make_controller(const std::string& kind, const std::string& actor_path);
 

@@ -265,15 +265,23 @@ std::string interval(const nlohmann::json& results, const std::string& column) {
   return s.str();
 }
 
-// SAC against the scripted omega controller on the same episodes: "won 2, lost 4 (p 0.69)", or "—".
-std::string sac_vs_scripted(const nlohmann::json& results) {
-  if (!results.contains("sac-policy") || !results.contains("scripted-omega")) return "—";
-  const PairedComparison c = compare_paired(results["sac-policy"], results["scripted-omega"]);
+// SAC against a scripted omega column on the same episodes: "won 2, lost 4 (p 0.69)", or "—".
+std::string sac_vs(const nlohmann::json& results, const std::string& column) {
+  if (!results.contains("sac-policy") || !results.contains(column)) return "—";
+  const PairedComparison c = compare_paired(results["sac-policy"], results[column]);
   if (c.paired == 0) return "—";
   std::ostringstream s;
   s << "won " << c.only_first << ", lost " << c.only_second << " (p " << std::fixed << std::setprecision(2)
     << c.sign_test_p << ")";
   return s.str();
+}
+
+// Against the scripted rule, and where the table ran it, the rule turning the other way:
+// "won 0, lost 5 (p 0.06); other way: won 1, lost 0 (p 1.00)".
+std::string sac_vs_scripted(const nlohmann::json& results) {
+  std::string cell = sac_vs(results, "scripted-omega");
+  if (results.contains("scripted-omega-ccw")) cell += "; other way: " + sac_vs(results, "scripted-omega-ccw");
+  return cell;
 }
 
 std::string percent(const nlohmann::json& results, const std::string& column) {
@@ -354,18 +362,24 @@ std::string failure_modes(const nlohmann::json& summary, const std::set<std::str
 
 std::string evaluation_to_markdown(const nlohmann::json& e) {
   std::ostringstream md;
-  md << "| case | episodes | SAC (ours) | SAC, 95% interval | push-only | scripted omega | paper | "
-        "SAC, reachable targets | SAC vs scripted, same episodes | reached by a controller or rotation schedule |\n"
-        "|---|---|---|---|---|---|---|---|---|---|\n";
+  md << "| case | episodes | SAC (ours) | SAC, 95% interval | push-only | scripted omega | scripted omega, "
+        "turning the other way | paper | SAC, reachable targets | SAC vs scripted (and the other way), same "
+        "episodes | reached by a "
+        "controller or rotation schedule |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const nlohmann::json& r : e["rows"]) {
     const nlohmann::json& res = r["results"];
     md << "| " << r["name"].get<std::string>() << " | " << r["episodes"].get<int>() << " | "
        << percent(res, "sac-policy") << " | " << interval(res, "sac-policy") << " | " << percent(res, "push-only")
-       << " | " << percent(res, "scripted-omega") << " | " << std::lround(100.0 * r["paper"].get<double>()) << "% | "
+       << " | " << percent(res, "scripted-omega") << " | " << percent(res, "scripted-omega-ccw") << " | " << std::lround(100.0 * r["paper"].get<double>()) << "% | "
        << reachable_percent(r) << " | " << sac_vs_scripted(res) << " | " << ceiling_percent(r) << " |\n";
   }
-  md << "\nSAC, 95% interval: Wilson score interval of SAC's rate over the row's episodes. SAC vs scripted: "
-        "episodes SAC reached and the scripted omega controller did not (won) and the reverse (lost), with the "
+  md << "\nScripted omega turns at full rate until omega <= -0.95, then holds; omega gives no side, so the "
+        "rule turns one fixed way, and the column beside it is the same rule turning the other way (where it "
+        "stops, short of -1 on the side it came from, can decide a shallow fork). "
+        "SAC, 95% interval: Wilson score interval of SAC's rate over the row's episodes. SAC vs scripted: "
+        "episodes SAC reached and the scripted omega controller (then: the one turning the other way) did not "
+        "(won) and the reverse (lost), with the "
         "exact two-sided sign test on those (p < 0.05: unlikely to be the luck of the seeds). Reached by a "
         "controller or rotation schedule: episodes (same anatomy, target and start) that some column reached, "
         "or, where none did, one of the 8 rotation schedules of apps/runner/rotation_schedules.hpp; the "

@@ -27,7 +27,7 @@ struct EvaluationOptions {
   std::string policy;                 // actor JSON of the shipped policy
   std::string base_policy;            // actor JSON trained on sensitivity/base only ("" = skip those rows)
   std::string index_path;             // anatomies/index.json
-  std::vector<std::string> controllers = {"policy", "push-only", "scripted-omega"};
+  std::vector<std::string> controllers = {"policy", "push-only", "scripted-omega", "scripted-omega-ccw"};
   bool extract_centerlines = true;    // zero-shot pipeline (CGAL MCF); false = ground-truth centerlines
   double episode_scale = 1.0;         // multiply every row's episode count (quick looks: 0.1)
   std::uint64_t seed = 0;
@@ -52,7 +52,7 @@ std::vector<Anatomy> load_row_anatomies(const EvaluationRow& row, const Evaluati
 // anatomy or policy is missing are kept with a "skipped" reason.
 nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const EvaluationOptions& options);
 
-// The table as Markdown: case | episodes | SAC | push-only | scripted omega | paper | SAC on reachable
+// The table as Markdown: case | episodes | SAC | push-only | scripted omega (both turn directions) | paper | SAC on reachable
 // targets | SAC vs scripted | reached by a controller or rotation schedule, then per row the failure
 // modes seen (outcome counts, places, unreachable targets and out-of-reach episodes marked) so a short
 // row says why, not only how much.

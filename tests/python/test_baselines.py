@@ -14,6 +14,15 @@ def test_scripted_rule_is_the_cpp_one():
         obs[baselines.OMEGA] = omega
         assert c(obs) == action, omega
     assert baselines.PushOnly()(obs) == 0.0
+    mirrored = baselines.OmegaControllerCCW()
+    for omega, action in [(0.0, -1.0), (-0.94, -1.0), (-0.96, 0.0)]:
+        obs[baselines.OMEGA] = omega
+        assert mirrored(obs) == action, omega
+
+
+def test_unknown_controller_is_named():
+    with pytest.raises(ValueError, match="omega_scripted_cw"):
+        baselines.evaluate(["omega_scripted_cw"], ["t1_straight_y"], episodes=1, seed=0, workers=1, env_kwargs={})
 
 
 def test_short_run_on_a_training_pattern():

@@ -270,6 +270,26 @@ TEST_CASE("navigation outputs: trajectories, VTK and a biplane PNG per target", 
   CHECK(std::string(magic + 1, 3) == "PNG");
 }
 
+TEST_CASE("controllers: the scripted omega rule in both turn directions", "[runner]") {
+  gw::Observation obs{};
+  const auto cw = gw::make_controller("scripted-omega", "");
+  const auto ccw = gw::make_controller("scripted-omega-ccw", "");
+  CHECK(cw->name() == "scripted-omega");
+  CHECK(ccw->name() == "scripted-omega-ccw");
+  for (double omega : {1.0, 0.0, -0.94}) {  // not yet aimed: full rate, each its own way
+    obs[gw::obs_index::kOmega] = omega;
+    CHECK(cw->act(obs) == 1.0);
+    CHECK(ccw->act(obs) == -1.0);
+  }
+  for (double omega : {-0.95, -1.0}) {  // aimed: both hold
+    obs[gw::obs_index::kOmega] = omega;
+    CHECK(cw->act(obs) == 0.0);
+    CHECK(ccw->act(obs) == 0.0);
+  }
+  CHECK_THROWS_AS(gw::make_scripted_omega_controller(-0.95, 0.5), std::invalid_argument);
+  CHECK_THROWS_WITH(gw::make_controller("scripted-omega-cw", ""), Catch::Contains("scripted-omega-ccw"));
+}
+
 TEST_CASE("evaluation table: the paper's rows and a Markdown table that says why rows fall short", "[runner]") {
   const auto rows = gw::paper_table();
   REQUIRE(rows.size() == 10);
@@ -324,6 +344,23 @@ TEST_CASE("evaluation table: the paper's rows and a Markdown table that says why
                              {"notes", nlohmann::json::array()}, {"results", {{"scripted-omega", summary}}}});
   const std::string why = gw::evaluation_to_markdown(by_hand);
   CHECK(why.find("wrong_branch 3 (coronary T3 goal 2/3 x2, coronary T1 goal 1/2 x1)") != std::string::npos);
+  // The mirrored scripted rule has its own column, beside the scripted one; a table run without it shows "—".
+  CHECK(why.find("| coronary-like | 4 | — | — | — | 0% | — | 94% |") != std::string::npos);
+  nlohmann::json mirrored = by_hand;
+  nlohmann::json half = summary;
+  half["successes"] = 2;
+  half["success_rate"] = 0.5;
+  mirrored["rows"][0]["results"]["scripted-omega-ccw"] = half;
+  CHECK(gw::evaluation_to_markdown(mirrored).find("| 0% | 50% | 94% |") != std::string::npos);
+  // SAC is paired with both directions of the rule on the same episodes.
+  mirrored["rows"][0]["results"]["sac-policy"] = summary;  // lost every episode, as scripted-omega did
+  for (int k = 0; k < 4; ++k)
+    for (const char* column : {"sac-policy", "scripted-omega", "scripted-omega-ccw"})
+      mirrored["rows"][0]["results"][column]["results"][k]["seed"] = k;
+  auto& won_by_ccw = mirrored["rows"][0]["results"]["scripted-omega-ccw"]["results"];
+  won_by_ccw[0]["outcome"] = won_by_ccw[1]["outcome"] = "success";
+  CHECK(gw::evaluation_to_markdown(mirrored).find("| won 0, lost 0 (p 1.00); other way: won 0, lost 2 (p 0.50) |") !=
+        std::string::npos);
   // With omega at the loss recorded, each place says how many of its losses the controller had aimed.
   nlohmann::json aimed_row = by_hand;
   auto& eps = aimed_row["rows"][0]["results"]["scripted-omega"]["results"];
@@ -334,7 +371,7 @@ TEST_CASE("evaluation table: the paper's rows and a Markdown table that says why
   CHECK(aimed.find("wrong_branch 3 (coronary T3 goal 2/3 x2 aimed 1, coronary T1 goal 1/2 x1 aimed 1)") !=
         std::string::npos);
   CHECK(why.find("diverged 1 (coronary T6 x1)") != std::string::npos);
-  CHECK(why.find("| coronary-like | 4 | — | — | — | 0% | 94% | — | — |") != std::string::npos);
+  CHECK(why.find("| coronary-like | 4 | — | — | — | 0% | — | 94% | — | — |") != std::string::npos);
 
   // A target no rotation reaches is marked where it was lost, and SAC's rate over the others is shown.
   nlohmann::json win = {{"outcome", "success"}, {"anatomy", "coronary"}, {"target", 1}, {"detail", ""}};

@@ -1,4 +1,4 @@
-"""Lower anchors for RL on the navigation task: push-only and a scripted omega controller.
+"""Lower anchors for RL on the navigation task: push-only and a scripted omega controller (both turn directions).
 
     python -m guidewire_nav.baselines --episodes 20 --workers 2      # prints one JSON object
 
@@ -38,9 +38,11 @@ class OmegaController:
     omega = k_p . w_p is +1 when the tip bends towards the wrong branch and -1 when it bends away.
     Turning one way at a constant rate sweeps the bend round until omega drops to `release`. The same
     rule as the C++ `scripted-omega` controller of navigate and evaluate (apps/runner/controller.cpp),
-    so a number from here and one from the results table mean the same baseline."""
+    so a number from here and one from the results table mean the same baseline. omega has no side, so
+    the rule turns one fixed way; `OmegaControllerCCW` is the C++ `scripted-omega-ccw`, turning the other."""
 
     name = "omega_scripted"
+    turn = 1.0
 
     def __init__(self, release: float = -0.95):
         self.release = release
@@ -49,10 +51,17 @@ class OmegaController:
         pass
 
     def __call__(self, obs: np.ndarray) -> float:
-        return 1.0 if float(obs[OMEGA]) > self.release else 0.0
+        return self.turn if float(obs[OMEGA]) > self.release else 0.0
 
 
-CONTROLLERS = {"push_only": PushOnly, "omega_scripted": OmegaController}
+class OmegaControllerCCW(OmegaController):
+    """The scripted rule mirrored: where it stops (short of -1, on the side it came from) can decide a fork."""
+
+    name = "omega_scripted_ccw"
+    turn = -1.0
+
+
+CONTROLLERS = {"push_only": PushOnly, "omega_scripted": OmegaController, "omega_scripted_ccw": OmegaControllerCCW}
 
 
 def run_episodes(controller_name: str, anatomy: str, seeds: list[int], env_kwargs: dict) -> list[dict]:
@@ -94,6 +103,9 @@ def _job(args):
 
 
 def evaluate(controllers, anatomies, episodes: int, seed: int, workers: int, env_kwargs: dict) -> dict:
+    unknown = [c for c in controllers if c not in CONTROLLERS]
+    if unknown:
+        raise ValueError(f"unknown controller {unknown[0]!r} (known: {', '.join(CONTROLLERS)})")
     jobs = [
         (c, a, [seed + 1000 * i + k for k in range(episodes)], env_kwargs)
         for c in controllers
@@ -131,7 +143,8 @@ def evaluate(controllers, anatomies, episodes: int, seed: int, workers: int, env
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--anatomies", default="t1_straight_y,t2_curved_straight_exit,t3_out_of_plane_steep,t4_s_curving_back")
-    p.add_argument("--controllers", default="push_only,omega_scripted")
+    p.add_argument("--controllers", default="push_only,omega_scripted,omega_scripted_ccw",
+                   help="comma-separated: " + ", ".join(CONTROLLERS))
     p.add_argument("--episodes", type=int, default=20, help="episodes per anatomy and controller")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--workers", type=int, default=2, help="parallel processes, one server each")

@@ -38,7 +38,7 @@ std::unique_ptr<Controller> make_push_only_controller();
 // way: `turn` +1 ("scripted-omega") or -1 ("scripted-omega-ccw", the same rule mirrored). Where it stops
 // (just short of -1, on the side it came from) depends on that choice, and on a shallow fork that side
 // can decide the branch: the table runs both so a baseline's lead is not read as skill when it is the
-// direction (coronary, 2026-11-30: 56 vs 49 of 60 episodes).
+// direction (results table, 2026-11-30: coronary 94 vs 82%, deformed coronary 74 vs 58%).
 std::unique_ptr<Controller> make_scripted_omega_controller(double release = -0.95, double turn = 1.0);
 
 // "policy" (needs `actor_path`) | "push-only" | "scripted-omega" | "scripted-omega-ccw" | a rotation schedule

@@ -66,7 +66,9 @@ int main(int argc, char** argv) {
                  "probe targets no controller reached with 8 rotation schedules from this many seeds (0 = skip)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--controllers", controllers, "comma-separated columns: policy, push-only, scripted-omega, scripted-omega-ccw (the scripted rule turning the other way)");
+  app.add_option("--controllers", controllers,
+                 "comma-separated columns: policy, push-only, scripted-omega, scripted-omega-ccw (the scripted "
+                 "rule turning the other way)");
   std::string from_json;
   app.add_option("--from-json", from_json,
                  "run nothing: write results.md (to --out) again from a results.json an earlier run wrote");

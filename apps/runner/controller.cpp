@@ -94,8 +94,8 @@ std::unique_ptr<Controller> make_controller(const std::string& kind, const std::
   const auto& schedules = rotation_schedule_names();
   if (std::find(schedules.begin(), schedules.end(), kind) != schedules.end()) return make_rotation_schedule(kind);
   throw std::invalid_argument("unknown controller '" + kind +
-                              "' (expected policy, push-only, scripted-omega, scripted-omega-ccw or a rotation schedule: " +
-                              rotation_schedule_list() + ")");
+                              "' (expected policy, push-only, scripted-omega, scripted-omega-ccw or a rotation "
+                              "schedule: " + rotation_schedule_list() + ")");
 }
 
 std::string default_policy_path() {

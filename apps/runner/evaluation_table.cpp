@@ -362,16 +362,16 @@ std::string failure_modes(const nlohmann::json& summary, const std::set<std::str
 
 std::string evaluation_to_markdown(const nlohmann::json& e) {
   std::ostringstream md;
-  md << "| case | episodes | SAC (ours) | SAC, 95% interval | push-only | scripted omega | scripted omega, "
-        "turning the other way | paper | SAC, reachable targets | SAC vs scripted (and the other way), same "
-        "episodes | reached by a "
-        "controller or rotation schedule |\n"
+  md << "| case | episodes | SAC (ours) | SAC, 95% interval | push-only | scripted omega | "
+        "scripted omega, turning the other way | paper | SAC, reachable targets | "
+        "SAC vs scripted (and the other way), same episodes | reached by a controller or rotation schedule |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const nlohmann::json& r : e["rows"]) {
     const nlohmann::json& res = r["results"];
     md << "| " << r["name"].get<std::string>() << " | " << r["episodes"].get<int>() << " | "
        << percent(res, "sac-policy") << " | " << interval(res, "sac-policy") << " | " << percent(res, "push-only")
-       << " | " << percent(res, "scripted-omega") << " | " << percent(res, "scripted-omega-ccw") << " | " << std::lround(100.0 * r["paper"].get<double>()) << "% | "
+       << " | " << percent(res, "scripted-omega") << " | " << percent(res, "scripted-omega-ccw") << " | "
+       << std::lround(100.0 * r["paper"].get<double>()) << "% | "
        << reachable_percent(r) << " | " << sac_vs_scripted(res) << " | " << ceiling_percent(r) << " |\n";
   }
   md << "\nScripted omega turns at full rate until omega <= -0.95, then holds; omega gives no side, so the "

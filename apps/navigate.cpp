@@ -115,7 +115,8 @@ int main(int argc, char** argv) {
     if (!out_dir.empty()) {
       // The PNG's own summary line names anatomy, target, controller and (for one episode) the seed; this
       // line adds what it cannot: the actor file and, for batches, where the seeds start.
-      std::string line = controller_kind == "policy" ? "policy " + std::filesystem::path(policy).filename().string() : summary["controller"].get<std::string>();
+      std::string line = controller_kind == "policy" ? "policy " + std::filesystem::path(policy).filename().string()
+                                                     : summary["controller"].get<std::string>();
       if (requests.size() > 1) line += " | seeds from " + std::to_string(seed);
       const std::vector<std::string> title = {line};
       summary["files"] = gw::write_navigation_outputs(out_dir, nav, traces, title);

@@ -144,7 +144,7 @@ static std::string write_actor(const fs::path& dir, const std::string& layout, i
   return p.string();
 }
 
-TEST_CASE("controllers: an actor gets the omega it was trained with; an unknown layout is refused", "[runner]") {
+TEST_CASE("controllers: an actor gets the omega it was trained with, an unknown layout is refused", "[runner]") {
   const fs::path dir = scratch_dir("layouts");
   gw::TaskConfig config;
   REQUIRE(config.omega_plane == gw::OmegaPlane::kApproach);
@@ -490,7 +490,7 @@ TEST_CASE("rotation schedules: the family, their rules, unknown names", "[runner
   CHECK_THROWS_WITH(gw::make_rotation_schedule("spin+2"), Catch::Contains("known: aim-0.95"));
 }
 
-TEST_CASE("reachability: a reachable target stops at the first success; a cut-short one tries the whole family",
+TEST_CASE("reachability: a reachable target stops at the first success, a cut-short one tries the whole family",
           "[runner]") {
   const ShortT1 full(0);  // automatic step limit: targets can be reached
   const auto reached = gw::probe_reachability(full.task, {{0, 1}}, 2, 1);

@@ -91,7 +91,7 @@ TEST_CASE("server: with omega_side the layout is obs/3 and every observation has
   CHECK(omega * omega + side * side <= 1.0 + 1e-9);  // (cos, sin) of one angle, faded alike
 }
 
-TEST_CASE("server: reset and step replies; close ends the connection", "[server]") {
+TEST_CASE("server: reset and step replies, close ends the connection", "[server]") {
   const gw::NavigationTask task = y_task();
   RunningServer s(task);
   gwtest::RawClient c(s.server.port());
@@ -162,7 +162,7 @@ TEST_CASE("server: bad requests get an error reply and the connection stays usab
   still_serving(s.server.port());
 }
 
-TEST_CASE("server: an oversized line gets an error and a clean disconnect; others are served", "[server]") {
+TEST_CASE("server: an oversized line gets an error and a clean disconnect, others are served", "[server]") {
   const gw::NavigationTask task = y_task();
   gw::ServerOptions options;
   options.max_line_bytes = 4096;

@@ -76,7 +76,7 @@ TEST_CASE("course through a Y bifurcation: directions, goals, control mode", "[t
 // approach, is orthogonal to it whatever the roll: omega cannot tell a tip aimed into the branch from one
 // aimed away. In the approach plane (normal to p = +y), w - c = (-1, 1, 0) projects to -x: a tip bent
 // towards the side branch reads -1, away from it +1.
-TEST_CASE("omega's approach plane sees a 90-degree side branch; the paper's plane does not", "[task]") {
+TEST_CASE("omega's approach plane sees a 90-degree side branch, the paper's plane does not", "[task]") {
   const gw::CenterlineGraph g = gwtest::t_graph();
   std::vector<gw::Polyline> lines;
   for (const auto& b : g.branches) lines.push_back(gw::make_polyline(b.points));

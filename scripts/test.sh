@@ -10,6 +10,7 @@ ctest --test-dir build --output-on-failure -j "$(nproc)"
 
 echo "== Python tests (pytest) =="
 export GW_BUILD_DIR="$PWD/build"
+export GW_TESTS_STRICT=1   # a skipped test fails here (tests/python/conftest.py)
 # No exception for pytest's exit 5 ("collected no test"): tests/python holds tests, so collecting
 # none means they broke (an import error at collection, a moved folder) and must fail the run.
 .venv/bin/python -m pytest -q tests/python

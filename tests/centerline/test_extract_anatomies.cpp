@@ -67,7 +67,7 @@ TEST_CASE("without --inlet the widest terminal is the inlet", "[centerline][anat
     CHECK((graph.inlet.position - truth.inlet.position).norm() <= truth.inlet.radius);
     ++checked;
   }
-  if (checked == 0) WARN("no anatomy with a clearly widest inlet in the index");
+  CHECK(checked > 0);  // the index holds such anatomies (the coronaries); none checked = the test checked nothing
 }
 
 TEST_CASE("an open, noisy coronary tree (like a clinical segmentation) meets the accuracy targets",

@@ -10,6 +10,7 @@
 
 #include "apps/report/atomic_write.hpp"
 #include "apps/runner/controller.hpp"
+#include "apps/runner/evaluation_merge.hpp"
 #include "apps/runner/evaluation_table.hpp"
 #include "engine/task/anatomy.hpp"
 
@@ -69,14 +70,31 @@ int main(int argc, char** argv) {
   app.add_option("--controllers", controllers,
                  "comma-separated columns: policy, push-only, scripted-omega, scripted-omega-ccw (the scripted "
                  "rule turning the other way)");
-  std::string from_json;
+  std::vector<std::string> from_json;
   app.add_option("--from-json", from_json,
-                 "run nothing: write results.md (to --out) again from a results.json an earlier run wrote");
+                 "run nothing: write results.md (to --out) again from a results.json an earlier run wrote; given "
+                 "several (runs on different --seed), join them row by row and write results.json too");
   CLI11_PARSE(app, argc, argv);
   try {
-    if (!from_json.empty()) {
-      // The report's format changes more often than the episodes are worth re-running (32 min).
-      write_markdown(read_results(from_json), out_dir);
+    if (from_json.size() == 1) {
+      // The report's format changes more often than the episodes are worth re-running (43 min).
+      write_markdown(read_results(from_json[0]), out_dir);
+      return 0;
+    }
+    if (from_json.size() > 1) {
+      const std::string merged_path = out_dir + "/results.json";
+      std::vector<nlohmann::json> runs;
+      for (const std::string& path : from_json) {
+        if (std::filesystem::exists(path) && std::filesystem::exists(merged_path) &&
+            std::filesystem::equivalent(path, merged_path))
+          throw std::invalid_argument("--from-json: '" + path + "' would be overwritten by the joined table; "
+                                      "give another --out");
+        runs.push_back(read_results(path));
+      }
+      const nlohmann::json merged = gw::merge_evaluations(runs, from_json);
+      std::filesystem::create_directories(out_dir);
+      gw::write_file_atomic(merged_path, merged.dump(2) + "\n");
+      write_markdown(merged, out_dir);
       return 0;
     }
     if (centerlines != "extract" && centerlines != "truth")

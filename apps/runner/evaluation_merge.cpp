@@ -1,0 +1,151 @@
+#include "apps/runner/evaluation_merge.hpp"
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <set>
+#include <stdexcept>
+
+namespace gw {
+namespace {
+
+std::string episode_name(const nlohmann::json& ep) {
+  return ep.value("anatomy", "?") + " T" + std::to_string(ep.value("target", 0)) + " seed " +
+         std::to_string(ep.value("seed", std::uint64_t{0}));
+}
+
+const nlohmann::json* find_row(const nlohmann::json& run, const std::string& name) {
+  for (const nlohmann::json& r : run["rows"])
+    if (r.value("name", "") == name) return &r;
+  return nullptr;
+}
+
+// One column's summaries (summarize_episodes) of the same row in several runs, as one.
+nlohmann::json merge_summaries(const std::vector<const nlohmann::json*>& parts) {
+  nlohmann::json out = {{"episodes", 0}, {"successes", 0}, {"outcomes", nlohmann::json::object()},
+                        {"results", nlohmann::json::array()}};
+  for (const nlohmann::json* s : parts) {
+    out["episodes"] = out["episodes"].get<int>() + s->at("episodes").get<int>();
+    out["successes"] = out["successes"].get<int>() + s->at("successes").get<int>();
+    for (const auto& [outcome, n] : s->at("outcomes").items())
+      out["outcomes"][outcome] = out["outcomes"].value(outcome, 0) + n.get<int>();
+    for (const nlohmann::json& ep : s->at("results")) out["results"].push_back(ep);
+  }
+  const int n = out["episodes"].get<int>();
+  out["success_rate"] = n ? out["successes"].get<double>() / n : 0.0;
+  return out;
+}
+
+// The ceilings of a row's runs added up; absent when a run did not measure it.
+std::optional<nlohmann::json> merge_ceilings(const std::vector<const nlohmann::json*>& rows) {
+  nlohmann::json out = {{"episodes", 0}, {"reached", 0}, {"reached_by_a_controller", 0},
+                        {"reached_only_by_a_schedule", nlohmann::json::array()},
+                        {"reached_by_none", nlohmann::json::array()}};
+  for (const nlohmann::json* r : rows) {
+    if (!r->contains("ceiling")) return std::nullopt;
+    const nlohmann::json& c = r->at("ceiling");
+    for (const char* count : {"episodes", "reached", "reached_by_a_controller"})
+      out[count] = out[count].get<int>() + c.at(count).get<int>();
+    for (const char* list : {"reached_only_by_a_schedule", "reached_by_none"})
+      for (const nlohmann::json& ep : c.at(list)) out[list].push_back(ep);
+  }
+  return out;
+}
+
+// Targets no column reached in the merged row: a run's verdict on a target another run's controllers
+// reached no longer applies; two runs' verdicts on the same target combine (reachable if either says so).
+nlohmann::json merge_reachability(const std::vector<const nlohmann::json*>& rows, const nlohmann::json& results) {
+  std::set<std::string> reached;
+  for (const auto& [column, summary] : results.items())
+    for (const nlohmann::json& ep : summary["results"])
+      if (ep.value("outcome", "") == "success")
+        reached.insert(ep.value("anatomy", "?") + " T" + std::to_string(ep.value("target", 0)));
+  std::map<std::string, nlohmann::json> verdicts;
+  for (const nlohmann::json* r : rows)
+    for (const nlohmann::json& t : r->value("reachability", nlohmann::json::array())) {
+      const std::string key = t.value("key", "");
+      if (reached.count(key)) continue;
+      auto [it, fresh] = verdicts.emplace(key, t);
+      if (!fresh && !it->second.value("reachable", false) && t.value("reachable", false)) it->second = t;
+    }
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& [key, t] : verdicts) out.push_back(t);
+  return out;
+}
+
+}  // namespace
+
+nlohmann::json merge_evaluations(const std::vector<nlohmann::json>& runs, const std::vector<std::string>& names) {
+  if (runs.empty()) throw std::invalid_argument("merge: no results to merge");
+  auto name_of = [&](std::size_t i) { return i < names.size() ? names[i] : "run " + std::to_string(i + 1); };
+  for (std::size_t i = 1; i < runs.size(); ++i)  // rows only a later run has would vanish silently
+    for (const nlohmann::json& r : runs[i]["rows"])
+      if (!find_row(runs[0], r.value("name", "")))
+        throw std::invalid_argument("merge: row '" + r.value("name", "") + "' is in " + name_of(i) +
+                                    " but not in " + name_of(0));
+  nlohmann::json out_rows = nlohmann::json::array();
+  for (const nlohmann::json& first : runs[0]["rows"]) {
+    const std::string row = first.value("name", "");
+    std::vector<const nlohmann::json*> parts;
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      const nlohmann::json* r = find_row(runs[i], row);
+      if (!r) throw std::invalid_argument("merge: row '" + row + "' is in " + name_of(0) + " but not in " + name_of(i));
+      if (r->value("paper", -1.0) != first.value("paper", -1.0))
+        throw std::invalid_argument("merge: row '" + row + "' has a different paper figure in " + name_of(i));
+      parts.push_back(r);
+    }
+    nlohmann::json merged = first;
+    merged["episodes"] = 0;
+    merged["wall_time_s"] = 0.0;
+    merged["notes"] = nlohmann::json::array();
+    std::set<std::string> notes, skipped;
+    for (const nlohmann::json* r : parts) {
+      merged["episodes"] = merged["episodes"].get<int>() + r->value("episodes", 0);
+      merged["wall_time_s"] = merged["wall_time_s"].get<double>() + r->value("wall_time_s", 0.0);
+      for (const nlohmann::json& n : r->value("notes", nlohmann::json::array()))
+        if (notes.insert(n.get<std::string>()).second) merged["notes"].push_back(n);
+      if (r->contains("skipped")) skipped.insert(r->at("skipped").get<std::string>());
+    }
+    if (!skipped.empty()) {  // a row skipped in one run has no episodes there to pair
+      std::string why;
+      for (const std::string& s : skipped) why += (why.empty() ? "" : "; ") + s;
+      merged["skipped"] = why;
+      merged["results"] = nlohmann::json::object();
+      merged.erase("ceiling");
+      out_rows.push_back(merged);
+      continue;
+    }
+    merged["results"] = nlohmann::json::object();
+    for (const auto& [column, unused] : first["results"].items()) {
+      std::vector<const nlohmann::json*> summaries;
+      for (std::size_t i = 0; i < parts.size(); ++i) {
+        if (!parts[i]->at("results").contains(column))
+          throw std::invalid_argument("merge: row '" + row + "' has no column '" + column + "' in " + name_of(i));
+        summaries.push_back(&parts[i]->at("results").at(column));
+      }
+      std::set<std::string> seen;
+      for (const nlohmann::json* s : summaries)
+        for (const nlohmann::json& ep : s->at("results"))
+          if (!seen.insert(episode_name(ep)).second)
+            throw std::invalid_argument("merge: row '" + row + "', column '" + column + "': episode " +
+                                        episode_name(ep) + " is in two runs (the same --seed twice?)");
+      merged["results"][column] = merge_summaries(summaries);
+    }
+    for (std::size_t i = 1; i < parts.size(); ++i)
+      if (parts[i]->at("results").size() != first["results"].size())
+        throw std::invalid_argument("merge: row '" + row + "' has columns in " + name_of(i) + " that " +
+                                    name_of(0) + " lacks");
+    merged["reachability"] = merge_reachability(parts, merged["results"]);
+    if (std::optional<nlohmann::json> ceiling = merge_ceilings(parts))
+      merged["ceiling"] = *ceiling;
+    else
+      merged.erase("ceiling");
+    out_rows.push_back(merged);
+  }
+  nlohmann::json settings = nlohmann::json::array();
+  for (std::size_t i = 0; i < runs.size(); ++i)
+    settings.push_back({{"run", name_of(i)}, {"settings", runs[i].value("settings", nlohmann::json::object())}});
+  return {{"rows", out_rows}, {"settings", {{"merged_from", settings}}}};
+}
+
+}  // namespace gw

@@ -1,0 +1,19 @@
+#pragma once
+// Several runs of the results table on different seeds joined into one: 50 episodes a row know a rate to
+// about +-10 points and pair too few episodes for a sign test; two seed sets double both.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace gw {
+
+// `runs` are results.json objects of `evaluate` (names[i] names runs[i] in errors). Rows are matched by
+// name and every column's episodes concatenated: counts, outcomes, per-episode results, the ceiling. A
+// target counts as unreached (reachability) only if no column reached it in any run. Throws
+// std::invalid_argument naming the row, column or episode when the runs do not fit together: a row or
+// column missing from one of them, different paper figures, or an episode (anatomy, target, seed) in
+// two runs (the same --seed twice would count every episode twice).
+nlohmann::json merge_evaluations(const std::vector<nlohmann::json>& runs, const std::vector<std::string>& names);
+
+}  // namespace gw

@@ -1,0 +1,107 @@
+// Joining results tables run on different seeds: counts add up, episodes pair across runs, and runs
+// that do not fit together are refused by name.
+#include <catch2/catch.hpp>
+
+#include "apps/runner/evaluation_merge.hpp"
+#include "apps/runner/evaluation_table.hpp"
+
+namespace {
+
+nlohmann::json episode(int target, int seed, bool success) {
+  return {{"anatomy", "coronary"}, {"target", target}, {"seed", seed},
+          {"outcome", success ? "success" : "wrong_branch"}, {"detail", ""}};
+}
+
+// A column over `outcomes` (one episode per seed from `first_seed`, all on target 1).
+nlohmann::json column(int first_seed, const std::vector<bool>& outcomes) {
+  nlohmann::json results = nlohmann::json::array();
+  int ok = 0;
+  for (std::size_t k = 0; k < outcomes.size(); ++k) {
+    results.push_back(episode(1, first_seed + static_cast<int>(k), outcomes[k]));
+    ok += outcomes[k];
+  }
+  const int n = static_cast<int>(outcomes.size());
+  return {{"episodes", n}, {"successes", ok}, {"success_rate", static_cast<double>(ok) / n},
+          {"outcomes", {{"success", ok}, {"wrong_branch", n - ok}}}, {"results", results}};
+}
+
+nlohmann::json run(int first_seed, const std::vector<bool>& sac, const std::vector<bool>& scripted, int reached) {
+  nlohmann::json row = {{"name", "coronary-like"}, {"episodes", sac.size()}, {"paper", 0.94},
+                        {"notes", nlohmann::json::array()}, {"wall_time_s", 10.0},
+                        {"results", {{"sac-policy", column(first_seed, sac)},
+                                     {"scripted-omega", column(first_seed, scripted)}}},
+                        {"reachability", nlohmann::json::array()},
+                        {"ceiling", {{"episodes", sac.size()}, {"reached", reached},
+                                     {"reached_by_a_controller", reached},
+                                     {"reached_only_by_a_schedule", nlohmann::json::array()},
+                                     {"reached_by_none", nlohmann::json::array()}}}};
+  return {{"rows", {row}}, {"settings", {{"seed", first_seed}}}};
+}
+
+}  // namespace
+
+TEST_CASE("merge: two seed sets add up row by row and pair across both", "[runner][merge]") {
+  const nlohmann::json a = run(0, {true, false, true, true}, {true, true, true, false}, 4);
+  const nlohmann::json b = run(1000, {true, true, false}, {false, true, false}, 2);
+  const nlohmann::json m = gw::merge_evaluations({a, b}, {"a.json", "b.json"});
+  REQUIRE(m["rows"].size() == 1);
+  const nlohmann::json& row = m["rows"][0];
+  CHECK(row["episodes"] == 7);
+  CHECK(row["wall_time_s"] == 20.0);
+  CHECK(row["results"]["sac-policy"]["successes"] == 5);
+  CHECK(row["results"]["sac-policy"]["episodes"] == 7);
+  CHECK(row["results"]["sac-policy"]["success_rate"] == Approx(5.0 / 7.0));
+  CHECK(row["results"]["sac-policy"]["outcomes"]["wrong_branch"] == 2);
+  CHECK(row["results"]["scripted-omega"]["results"].size() == 7);
+  CHECK(row["ceiling"]["episodes"] == 7);
+  CHECK(row["ceiling"]["reached"] == 6);
+  CHECK(m["settings"]["merged_from"][1]["run"] == "b.json");
+  const std::string md = gw::evaluation_to_markdown(m);
+  CHECK(md.find("| coronary-like | 7 | 71% |") != std::string::npos);
+  // a: SAC lost seed 1 (scripted won), won seed 3; b: SAC won seed 1000: won 2, lost 1 over both runs.
+  CHECK(md.find("| won 2, lost 1 (p 1.00) |") != std::string::npos);
+  CHECK(md.find("| 86% (6/7) |") != std::string::npos);
+}
+
+TEST_CASE("merge: runs that do not fit together are refused by name", "[runner][merge]") {
+  const nlohmann::json a = run(0, {true, false}, {true, true}, 2);
+  CHECK_THROWS_WITH(gw::merge_evaluations({a, a}, {"a.json", "again.json"}),
+                    Catch::Contains("episode coronary T1 seed 0 is in two runs"));
+  nlohmann::json other_row = run(10, {true}, {true}, 1);
+  other_row["rows"][0]["name"] = "deformed coronary";
+  CHECK_THROWS_WITH(gw::merge_evaluations({a, other_row}, {"a.json", "b.json"}),
+                    Catch::Contains("row 'deformed coronary' is in b.json but not in a.json"));
+  nlohmann::json two_rows = a;
+  two_rows["rows"].push_back(other_row["rows"][0]);
+  CHECK_THROWS_WITH(gw::merge_evaluations({two_rows, run(20, {true}, {true}, 1)}, {"a.json", "b.json"}),
+                    Catch::Contains("row 'deformed coronary' is in a.json but not in b.json"));
+  nlohmann::json no_scripted = run(10, {true}, {true}, 1);
+  no_scripted["rows"][0]["results"].erase("scripted-omega");
+  CHECK_THROWS_WITH(gw::merge_evaluations({a, no_scripted}, {"a.json", "b.json"}),
+                    Catch::Contains("no column 'scripted-omega' in b.json"));
+  CHECK_THROWS_WITH(gw::merge_evaluations({no_scripted, a}, {"b.json", "a.json"}),
+                    Catch::Contains("columns in a.json that b.json lacks"));
+  nlohmann::json other_paper = run(10, {true}, {true}, 1);
+  other_paper["rows"][0]["paper"] = 0.5;
+  CHECK_THROWS_WITH(gw::merge_evaluations({a, other_paper}, {"a.json", "b.json"}),
+                    Catch::Contains("different paper figure in b.json"));
+  CHECK_THROWS(gw::merge_evaluations({}, {}));
+}
+
+TEST_CASE("merge: a target one run never reached is unreached only if no run's controllers reached it",
+          "[runner][merge]") {
+  nlohmann::json a = run(0, {false}, {false}, 0);
+  a["rows"][0]["reachability"] = {{{"key", "coronary T1"}, {"anatomy", "coronary"}, {"target", 1},
+                                   {"reachable", false}}};
+  const nlohmann::json reached_later = run(5, {true}, {false}, 1);
+  CHECK(gw::merge_evaluations({a, reached_later}, {"a", "b"})["rows"][0]["reachability"].empty());
+  nlohmann::json probed_later = run(5, {false}, {false}, 1);
+  probed_later["rows"][0]["reachability"] = {{{"key", "coronary T1"}, {"anatomy", "coronary"}, {"target", 1},
+                                              {"reachable", true}, {"schedule", "spin+1"}}};
+  const nlohmann::json both = gw::merge_evaluations({a, probed_later}, {"a", "b"});
+  REQUIRE(both["rows"][0]["reachability"].size() == 1);
+  CHECK(both["rows"][0]["reachability"][0]["reachable"] == true);  // one run's schedule reached it
+  nlohmann::json no_ceiling = run(5, {true}, {true}, 1);
+  no_ceiling["rows"][0].erase("ceiling");
+  CHECK_FALSE(gw::merge_evaluations({a, no_ceiling}, {"a", "b"})["rows"][0].contains("ceiling"));
+}

@@ -2,6 +2,7 @@
 // scripted-omega baselines and the paper's figure. Writes results.md and results.json.
 //   evaluate --out results/            # full table (~1,800 episodes)
 //   evaluate --episode-scale 0.1       # a quick look
+//   evaluate --from-json a/results.json b/results.json --out both   # runs on two --seed sets, joined
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <fstream>

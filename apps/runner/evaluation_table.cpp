@@ -271,8 +271,11 @@ std::string sac_vs(const nlohmann::json& results, const std::string& column) {
   const PairedComparison c = compare_paired(results["sac-policy"], results[column]);
   if (c.paired == 0) return "—";
   std::ostringstream s;
-  s << "won " << c.only_first << ", lost " << c.only_second << " (p " << std::fixed << std::setprecision(2)
-    << c.sign_test_p << ")";
+  s << "won " << c.only_first << ", lost " << c.only_second << " (p ";
+  if (c.sign_test_p < 0.001)
+    s << "< 0.001)";
+  else  // two decimals would print a clear difference (15 against 2 pairs: 0.002) as "p 0.00"
+    s << std::fixed << std::setprecision(c.sign_test_p < 0.01 ? 3 : 2) << c.sign_test_p << ")";
   return s.str();
 }
 

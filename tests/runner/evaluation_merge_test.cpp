@@ -63,6 +63,16 @@ TEST_CASE("merge: two seed sets add up row by row and pair across both", "[runne
   CHECK(md.find("| 86% (6/7) |") != std::string::npos);
 }
 
+TEST_CASE("merge: a small sign-test p keeps its digits", "[runner][merge]") {
+  // 10 episodes only SAC reached: p = 2 / 2^10 = 0.002, which two decimals would print as 0.00.
+  const std::vector<bool> all(10, true), none(10, false);
+  const std::string ten = gw::evaluation_to_markdown(run(0, all, none, 10));
+  CHECK(ten.find("| won 10, lost 0 (p 0.002) |") != std::string::npos);
+  const std::vector<bool> many(12, true), lost(12, false);
+  const nlohmann::json twelve = gw::merge_evaluations({run(0, all, none, 10), run(100, many, lost, 12)}, {"a", "b"});
+  CHECK(gw::evaluation_to_markdown(twelve).find("| won 22, lost 0 (p < 0.001) |") != std::string::npos);
+}
+
 TEST_CASE("merge: runs that do not fit together are refused by name", "[runner][merge]") {
   const nlohmann::json a = run(0, {true, false}, {true, true}, 2);
   CHECK_THROWS_WITH(gw::merge_evaluations({a, a}, {"a.json", "again.json"}),

@@ -90,7 +90,8 @@ nlohmann::json merge_evaluations(const std::vector<nlohmann::json>& runs, const 
     for (std::size_t i = 0; i < runs.size(); ++i) {
       const nlohmann::json* r = find_row(runs[i], row);
       if (!r) throw std::invalid_argument("merge: row '" + row + "' is in " + name_of(0) + " but not in " + name_of(i));
-      if (r->value("paper", -1.0) != first.value("paper", -1.0))
+      if (r->value("paper", -1.0) != first.value("paper", -1.0) ||
+          r->value("paper_episodes", -1) != first.value("paper_episodes", -1))
         throw std::invalid_argument("merge: row '" + row + "' has a different paper figure in " + name_of(i));
       parts.push_back(r);
     }

@@ -161,7 +161,8 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
     const auto start = std::chrono::steady_clock::now();
     const int episodes = std::max(1, static_cast<int>(std::lround(row.episodes * o.episode_scale)));
     nlohmann::json r = {{"name", row.name}, {"anatomies", row.anatomies}, {"episodes", episodes},
-                        {"paper", row.paper_success}, {"results", nlohmann::json::object()},
+                        {"paper", row.paper_success}, {"paper_episodes", row.episodes},
+                        {"results", nlohmann::json::object()},
                         {"notes", nlohmann::json::array()}};
     const std::string policy = row.base_policy ? o.base_policy : o.policy;
     try {
@@ -265,18 +266,44 @@ std::string interval(const nlohmann::json& results, const std::string& column) {
   return s.str();
 }
 
+// "p 0.69", "p 0.002", "p < 0.001": two decimals would print a clear difference (15 against 2 pairs,
+// 0.002) as "p 0.00".
+std::string p_text(double p) {
+  if (p < 0.001) return "p < 0.001";
+  std::ostringstream s;
+  s << "p " << std::fixed << std::setprecision(p < 0.01 ? 3 : 2) << p;
+  return s.str();
+}
+
 // SAC against a scripted omega column on the same episodes: "won 2, lost 4 (p 0.69)", or "—".
 std::string sac_vs(const nlohmann::json& results, const std::string& column) {
   if (!results.contains("sac-policy") || !results.contains(column)) return "—";
   const PairedComparison c = compare_paired(results["sac-policy"], results[column]);
   if (c.paired == 0) return "—";
-  std::ostringstream s;
-  s << "won " << c.only_first << ", lost " << c.only_second << " (p ";
-  if (c.sign_test_p < 0.001)
-    s << "< 0.001)";
-  else  // two decimals would print a clear difference (15 against 2 pairs: 0.002) as "p 0.00"
-    s << std::fixed << std::setprecision(c.sign_test_p < 0.01 ? 3 : 2) << c.sign_test_p << ")";
-  return s.str();
+  return "won " + std::to_string(c.only_first) + ", lost " + std::to_string(c.only_second) + " (" +
+         p_text(c.sign_test_p) + ")";
+}
+
+// How many episodes the paper's figure is of: the row's own record, else the paper's table by name
+// (results.json files written before rows carried it), else 0 (unknown).
+int paper_episodes(const nlohmann::json& row) {
+  if (row.contains("paper_episodes")) return row["paper_episodes"].get<int>();
+  for (const EvaluationRow& r : paper_table())
+    if (r.name == row.value("name", "")) return r.episodes;
+  return 0;
+}
+
+// SAC's rate against the paper's on different episodes: "-8 points (p 0.20)" with Fisher's exact test
+// on the two counts (the paper's figure is itself of 50 or 100 episodes), or "—".
+std::string sac_vs_paper(const nlohmann::json& row) {
+  const nlohmann::json& res = row["results"];
+  const int n_paper = paper_episodes(row);
+  if (!res.contains("sac-policy") || n_paper == 0 || res["sac-policy"]["episodes"].get<int>() == 0) return "—";
+  const int ok = res["sac-policy"]["successes"].get<int>(), n = res["sac-policy"]["episodes"].get<int>();
+  const int ok_paper = static_cast<int>(std::lround(row["paper"].get<double>() * n_paper));
+  const long points = std::lround(100.0 * ok / n) - std::lround(100.0 * ok_paper / n_paper);
+  return (points > 0 ? "+" : "") + std::to_string(points) + " points (" +
+         p_text(fisher_exact_p(ok, n, ok_paper, n_paper)) + ")";
 }
 
 // Against the scripted rule, and where the table ran it, the rule turning the other way:
@@ -366,21 +393,24 @@ std::string failure_modes(const nlohmann::json& summary, const std::set<std::str
 std::string evaluation_to_markdown(const nlohmann::json& e) {
   std::ostringstream md;
   md << "| case | episodes | SAC (ours) | SAC, 95% interval | push-only | scripted omega | "
-        "scripted omega, turning the other way | paper | SAC, reachable targets | "
+        "scripted omega, turning the other way | paper | SAC vs paper | SAC, reachable targets | "
         "SAC vs scripted (and the other way), same episodes | reached by a controller or rotation schedule |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const nlohmann::json& r : e["rows"]) {
     const nlohmann::json& res = r["results"];
     md << "| " << r["name"].get<std::string>() << " | " << r["episodes"].get<int>() << " | "
        << percent(res, "sac-policy") << " | " << interval(res, "sac-policy") << " | " << percent(res, "push-only")
        << " | " << percent(res, "scripted-omega") << " | " << percent(res, "scripted-omega-ccw") << " | "
-       << std::lround(100.0 * r["paper"].get<double>()) << "% | "
+       << std::lround(100.0 * r["paper"].get<double>()) << "% | " << sac_vs_paper(r) << " | "
        << reachable_percent(r) << " | " << sac_vs_scripted(res) << " | " << ceiling_percent(r) << " |\n";
   }
   md << "\nScripted omega turns at full rate until omega <= -0.95, then holds; omega gives no side, so the "
         "rule turns one fixed way, and the column beside it is the same rule turning the other way (where it "
         "stops, short of -1 on the side it came from, can decide a shallow fork). "
-        "SAC, 95% interval: Wilson score interval of SAC's rate over the row's episodes. SAC vs scripted: "
+        "SAC, 95% interval: Wilson score interval of SAC's rate over the row's episodes. SAC vs paper: SAC's "
+        "rate minus the paper's, and Fisher's exact two-sided test on the two counts (the paper ran 100 "
+        "episodes on the training anatomies and 50 on each other row), i.e. whether the difference could be the "
+        "luck of both sets of episodes. SAC vs scripted: "
         "episodes SAC reached and the scripted omega controller (then: the one turning the other way) did not "
         "(won) and the reverse (lost), with the "
         "exact two-sided sign test on those (p < 0.05: unlikely to be the luck of the seeds). Reached by a "

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <utility>
 
 namespace gw {
 
@@ -30,6 +31,22 @@ double sign_test_p(int a, int b) {
   for (int k = 0; k <= k_max; ++k)
     tail += std::exp(std::lgamma(n + 1.0) - std::lgamma(k + 1.0) - std::lgamma(n - k + 1.0) - n * std::log(2.0));
   return std::min(1.0, 2.0 * tail);
+}
+
+double fisher_exact_p(int successes_a, int episodes_a, int successes_b, int episodes_b) {
+  for (const auto& [k, n] : {std::pair{successes_a, episodes_a}, std::pair{successes_b, episodes_b}})
+    if (n < 0 || k < 0 || k > n)
+      throw std::invalid_argument("fisher_exact_p: " + std::to_string(k) + " successes of " + std::to_string(n) +
+                                  " episodes");
+  // Given both row totals and the total successes K, the first row's successes x is hypergeometric.
+  const int n1 = episodes_a, n2 = episodes_b, K = successes_a + successes_b;
+  auto log_choose = [](int n, int k) { return std::lgamma(n + 1.0) - std::lgamma(k + 1.0) - std::lgamma(n - k + 1.0); };
+  auto log_p = [&](int x) { return log_choose(n1, x) + log_choose(n2, K - x) - log_choose(n1 + n2, K); };
+  const double seen = log_p(successes_a);
+  double p = 0.0;
+  for (int x = std::max(0, K - n2); x <= std::min(K, n1); ++x)
+    if (log_p(x) <= seen + 1e-7) p += std::exp(log_p(x));  // the tolerance keeps ties that rounding splits
+  return std::min(1.0, p);
 }
 
 PairedComparison compare_paired(const nlohmann::json& first, const nlohmann::json& second) {

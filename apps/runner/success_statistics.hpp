@@ -34,4 +34,10 @@ PairedComparison compare_paired(const nlohmann::json& first_summary, const nlohm
 // pairs at least as uneven as (a, b). 1 when a + b = 0.
 double sign_test_p(int a, int b);
 
+// Two rates from different episodes (ours against a paper's, which reports only its count): Fisher's
+// exact two-sided test on the 2x2 table of successes and failures, conditioned on both margins. The
+// probability, if both came from one rate, of a split at most as likely as the one seen. Throws
+// std::invalid_argument when a count is outside [0, episodes].
+double fisher_exact_p(int successes_a, int episodes_a, int successes_b, int episodes_b);
+
 }  // namespace gw

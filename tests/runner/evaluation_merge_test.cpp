@@ -61,6 +61,9 @@ TEST_CASE("merge: two seed sets add up row by row and pair across both", "[runne
   // a: SAC lost seed 1 (scripted won), won seed 3; b: SAC won seed 1000: won 2, lost 1 over both runs.
   CHECK(md.find("| won 2, lost 1 (p 1.00) |") != std::string::npos);
   CHECK(md.find("| 86% (6/7) |") != std::string::npos);
+  // Against the paper's 94% of 50 (47; the row carries no paper_episodes, so the paper's table says 50): 71% of
+  // 7 (5) is 23 points below, Fisher p 0.11.
+  CHECK(md.find("| 94% | -23 points (p 0.11) |") != std::string::npos);
 }
 
 TEST_CASE("merge: a small sign-test p keeps its digits", "[runner][merge]") {
@@ -94,6 +97,10 @@ TEST_CASE("merge: runs that do not fit together are refused by name", "[runner][
   nlohmann::json other_paper = run(10, {true}, {true}, 1);
   other_paper["rows"][0]["paper"] = 0.5;
   CHECK_THROWS_WITH(gw::merge_evaluations({a, other_paper}, {"a.json", "b.json"}),
+                    Catch::Contains("different paper figure in b.json"));
+  nlohmann::json other_count = run(10, {true}, {true}, 1);
+  other_count["rows"][0]["paper_episodes"] = 100;
+  CHECK_THROWS_WITH(gw::merge_evaluations({a, other_count}, {"a.json", "b.json"}),
                     Catch::Contains("different paper figure in b.json"));
   CHECK_THROWS(gw::merge_evaluations({}, {}));
 }

@@ -389,7 +389,8 @@ TEST_CASE("evaluation table: the paper's rows and a Markdown table that says why
   by_hand["rows"][0]["reachability"] = {{{"key", "coronary T3"}, {"anatomy", "coronary"}, {"target", 3},
                                          {"reachable", false}, {"episodes", 16}}};
   const std::string marked = gw::evaluation_to_markdown(by_hand);
-  CHECK(marked.find("| 94% | 100% (2/2) |") != std::string::npos);
+  // SAC's 2 of 4 against the paper's 47 of 50: 44 points below, Fisher p 0.039.
+  CHECK(marked.find("| 94% | -44 points (p 0.04) | 100% (2/2) |") != std::string::npos);
   // Same four episodes for both columns (same seed per episode): SAC 2 of 4, scripted 0 of 4.
   CHECK(marked.find("| 50% | 15-85% |") != std::string::npos);
   CHECK(marked.find("| won 2, lost 0 (p 0.50) |") != std::string::npos);
@@ -457,6 +458,13 @@ TEST_CASE("success statistics: Wilson intervals and the paired sign test", "[run
   CHECK(gw::sign_test_p(4, 2) == Approx(0.6875));
   CHECK(gw::sign_test_p(0, 5) == Approx(0.0625));
   CHECK(gw::sign_test_p(0, 0) == 1.0);
+  // Fisher's exact test, against R's fisher.test: the tea-tasting table and a lopsided one.
+  CHECK(gw::fisher_exact_p(3, 4, 1, 4) == Approx(0.485714).margin(1e-6));
+  CHECK(gw::fisher_exact_p(1, 10, 11, 14) == Approx(0.002759).margin(1e-6));
+  CHECK(gw::fisher_exact_p(11, 14, 1, 10) == Approx(0.002759).margin(1e-6));  // symmetric in the two rows
+  CHECK(gw::fisher_exact_p(42, 50, 47, 50) == Approx(0.199717).margin(1e-6));  // our coronary against the paper's
+  CHECK(gw::fisher_exact_p(50, 50, 50, 50) == Approx(1.0));
+  CHECK_THROWS_WITH(gw::fisher_exact_p(51, 50, 47, 50), Catch::Contains("51 successes of 50 episodes"));
   CHECK(gw::sign_test_p(3, 3) == 1.0);
   CHECK(gw::sign_test_p(0, 1000) < 1e-250);
 

@@ -1,6 +1,6 @@
 // evaluate: the paper's results table on our anatomies, each row beside the push-only and
 // scripted-omega baselines and the paper's figure. Writes results.md and results.json.
-//   evaluate --out results/            # full table (~1,800 episodes)
+//   evaluate --out results/            # full table (550 episodes a column, 4 columns)
 //   evaluate --episode-scale 0.1       # a quick look
 //   evaluate --from-json a/results.json b/results.json --out both   # runs on two --seed sets, joined
 #include <CLI/CLI.hpp>

@@ -53,9 +53,9 @@ std::vector<Anatomy> load_row_anatomies(const EvaluationRow& row, const Evaluati
 nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const EvaluationOptions& options);
 
 // The table as Markdown: case | episodes | SAC | push-only | scripted omega (both turn directions) | paper |
-// SAC on reachable targets | SAC vs scripted | reached by a controller or rotation schedule, then per row the failure
-// modes seen (outcome counts, places, unreachable targets and out-of-reach episodes marked) so a short
-// row says why, not only how much.
+// SAC vs paper (Fisher's exact test) | SAC on reachable targets | SAC vs scripted | reached by a controller or
+// rotation schedule, then per row the failure modes seen (outcome counts, places, unreachable targets and
+// out-of-reach episodes marked) so a short row says why, not only how much.
 std::string evaluation_to_markdown(const nlohmann::json& evaluation);
 
 }  // namespace gw

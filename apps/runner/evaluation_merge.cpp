@@ -1,6 +1,7 @@
 #include "apps/runner/evaluation_merge.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <set>
@@ -73,11 +74,71 @@ nlohmann::json merge_reachability(const std::vector<const nlohmann::json*>& rows
   return out;
 }
 
+using RunName = std::function<std::string(std::size_t)>;
+
+// The columns of one row over its runs; refuses a column one run lacks and an episode two runs share.
+nlohmann::json merge_columns(const std::vector<const nlohmann::json*>& parts, const std::string& row,
+                             const RunName& name_of) {
+  const nlohmann::json& first = parts[0]->at("results");
+  for (std::size_t i = 1; i < parts.size(); ++i)
+    for (const auto& [column, unused] : parts[i]->at("results").items())
+      if (!first.contains(column))
+        throw std::invalid_argument("merge: row '" + row + "' has columns in " + name_of(i) + " that " +
+                                    name_of(0) + " lacks");
+  nlohmann::json merged = nlohmann::json::object();
+  for (const auto& [column, unused] : first.items()) {
+    std::vector<const nlohmann::json*> summaries;
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      if (!parts[i]->at("results").contains(column))
+        throw std::invalid_argument("merge: row '" + row + "' has no column '" + column + "' in " + name_of(i));
+      summaries.push_back(&parts[i]->at("results").at(column));
+    }
+    std::set<std::string> seen;
+    for (const nlohmann::json* s : summaries)
+      for (const nlohmann::json& ep : s->at("results"))
+        if (!seen.insert(episode_name(ep)).second)
+          throw std::invalid_argument("merge: row '" + row + "', column '" + column + "': episode " +
+                                      episode_name(ep) + " is in two runs (the same --seed twice?)");
+    merged[column] = merge_summaries(summaries);
+  }
+  return merged;
+}
+
+// One row over its runs (parts[i] is the row in run i).
+nlohmann::json merge_row(const std::vector<const nlohmann::json*>& parts, const std::string& row,
+                         const RunName& name_of) {
+  nlohmann::json merged = *parts[0];
+  merged["episodes"] = 0;
+  merged["wall_time_s"] = 0.0;
+  merged["notes"] = nlohmann::json::array();
+  std::set<std::string> notes, skipped;
+  for (const nlohmann::json* r : parts) {
+    merged["episodes"] = merged["episodes"].get<int>() + r->value("episodes", 0);
+    merged["wall_time_s"] = merged["wall_time_s"].get<double>() + r->value("wall_time_s", 0.0);
+    for (const nlohmann::json& n : r->value("notes", nlohmann::json::array()))
+      if (notes.insert(n.get<std::string>()).second) merged["notes"].push_back(n);
+    if (r->contains("skipped")) skipped.insert(r->at("skipped").get<std::string>());
+  }
+  merged.erase("ceiling");
+  if (!skipped.empty()) {  // a row skipped in one run has no episodes there to pair
+    std::string why;
+    for (const std::string& s : skipped) why += (why.empty() ? "" : "; ") + s;
+    merged["skipped"] = why;
+    merged["results"] = nlohmann::json::object();
+    merged["reachability"] = nlohmann::json::array();
+    return merged;
+  }
+  merged["results"] = merge_columns(parts, row, name_of);
+  merged["reachability"] = merge_reachability(parts, merged["results"]);
+  if (std::optional<nlohmann::json> ceiling = merge_ceilings(parts)) merged["ceiling"] = *ceiling;
+  return merged;
+}
+
 }  // namespace
 
 nlohmann::json merge_evaluations(const std::vector<nlohmann::json>& runs, const std::vector<std::string>& names) {
   if (runs.empty()) throw std::invalid_argument("merge: no results to merge");
-  auto name_of = [&](std::size_t i) { return i < names.size() ? names[i] : "run " + std::to_string(i + 1); };
+  const RunName name_of = [&](std::size_t i) { return i < names.size() ? names[i] : "run " + std::to_string(i + 1); };
   for (std::size_t i = 1; i < runs.size(); ++i)  // rows only a later run has would vanish silently
     for (const nlohmann::json& r : runs[i]["rows"])
       if (!find_row(runs[0], r.value("name", "")))
@@ -95,53 +156,7 @@ nlohmann::json merge_evaluations(const std::vector<nlohmann::json>& runs, const 
         throw std::invalid_argument("merge: row '" + row + "' has a different paper figure in " + name_of(i));
       parts.push_back(r);
     }
-    nlohmann::json merged = first;
-    merged["episodes"] = 0;
-    merged["wall_time_s"] = 0.0;
-    merged["notes"] = nlohmann::json::array();
-    std::set<std::string> notes, skipped;
-    for (const nlohmann::json* r : parts) {
-      merged["episodes"] = merged["episodes"].get<int>() + r->value("episodes", 0);
-      merged["wall_time_s"] = merged["wall_time_s"].get<double>() + r->value("wall_time_s", 0.0);
-      for (const nlohmann::json& n : r->value("notes", nlohmann::json::array()))
-        if (notes.insert(n.get<std::string>()).second) merged["notes"].push_back(n);
-      if (r->contains("skipped")) skipped.insert(r->at("skipped").get<std::string>());
-    }
-    if (!skipped.empty()) {  // a row skipped in one run has no episodes there to pair
-      std::string why;
-      for (const std::string& s : skipped) why += (why.empty() ? "" : "; ") + s;
-      merged["skipped"] = why;
-      merged["results"] = nlohmann::json::object();
-      merged.erase("ceiling");
-      out_rows.push_back(merged);
-      continue;
-    }
-    merged["results"] = nlohmann::json::object();
-    for (const auto& [column, unused] : first["results"].items()) {
-      std::vector<const nlohmann::json*> summaries;
-      for (std::size_t i = 0; i < parts.size(); ++i) {
-        if (!parts[i]->at("results").contains(column))
-          throw std::invalid_argument("merge: row '" + row + "' has no column '" + column + "' in " + name_of(i));
-        summaries.push_back(&parts[i]->at("results").at(column));
-      }
-      std::set<std::string> seen;
-      for (const nlohmann::json* s : summaries)
-        for (const nlohmann::json& ep : s->at("results"))
-          if (!seen.insert(episode_name(ep)).second)
-            throw std::invalid_argument("merge: row '" + row + "', column '" + column + "': episode " +
-                                        episode_name(ep) + " is in two runs (the same --seed twice?)");
-      merged["results"][column] = merge_summaries(summaries);
-    }
-    for (std::size_t i = 1; i < parts.size(); ++i)
-      if (parts[i]->at("results").size() != first["results"].size())
-        throw std::invalid_argument("merge: row '" + row + "' has columns in " + name_of(i) + " that " +
-                                    name_of(0) + " lacks");
-    merged["reachability"] = merge_reachability(parts, merged["results"]);
-    if (std::optional<nlohmann::json> ceiling = merge_ceilings(parts))
-      merged["ceiling"] = *ceiling;
-    else
-      merged.erase("ceiling");
-    out_rows.push_back(merged);
+    out_rows.push_back(merge_row(parts, row, name_of));
   }
   nlohmann::json settings = nlohmann::json::array();
   for (std::size_t i = 0; i < runs.size(); ++i)

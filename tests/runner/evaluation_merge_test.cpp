@@ -105,6 +105,17 @@ TEST_CASE("merge: runs that do not fit together are refused by name", "[runner][
   CHECK_THROWS(gw::merge_evaluations({}, {}));
 }
 
+TEST_CASE("merge: a row one run skipped stays skipped, with the reason", "[runner][merge]") {
+  nlohmann::json skipped = run(10, {true}, {true}, 1);
+  skipped["rows"][0]["skipped"] = "no policy trained on sensitivity/base only";
+  skipped["rows"][0]["results"] = nlohmann::json::object();
+  const nlohmann::json m = gw::merge_evaluations({run(0, {true}, {true}, 1), skipped}, {"a", "b"});
+  CHECK(m["rows"][0]["skipped"] == "no policy trained on sensitivity/base only");
+  CHECK(m["rows"][0]["results"].empty());
+  CHECK_FALSE(m["rows"][0].contains("ceiling"));
+  CHECK(gw::evaluation_to_markdown(m).find("**coronary-like**: skipped: no policy") != std::string::npos);
+}
+
 TEST_CASE("merge: a target one run never reached is unreached only if no run's controllers reached it",
           "[runner][merge]") {
   nlohmann::json a = run(0, {false}, {false}, 0);

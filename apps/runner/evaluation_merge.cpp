@@ -1,19 +1,15 @@
 #include "apps/runner/evaluation_merge.hpp"
 
-#include <cstdint>
 #include <functional>
 #include <map>
 #include <optional>
 #include <set>
 #include <stdexcept>
 
+#include "apps/runner/evaluation_table.hpp"
+
 namespace gw {
 namespace {
-
-std::string episode_name(const nlohmann::json& ep) {
-  return ep.value("anatomy", "?") + " T" + std::to_string(ep.value("target", 0)) + " seed " +
-         std::to_string(ep.value("seed", std::uint64_t{0}));
-}
 
 const nlohmann::json* find_row(const nlohmann::json& run, const std::string& name) {
   for (const nlohmann::json& r : run["rows"])
@@ -60,7 +56,7 @@ nlohmann::json merge_reachability(const std::vector<const nlohmann::json*>& rows
   for (const auto& [column, summary] : results.items())
     for (const nlohmann::json& ep : summary["results"])
       if (ep.value("outcome", "") == "success")
-        reached.insert(ep.value("anatomy", "?") + " T" + std::to_string(ep.value("target", 0)));
+        reached.insert(target_key(ep["anatomy"].get<std::string>(), ep["target"].get<int>()));
   std::map<std::string, nlohmann::json> verdicts;
   for (const nlohmann::json* r : rows)
     for (const nlohmann::json& t : r->value("reachability", nlohmann::json::array())) {
@@ -96,9 +92,9 @@ nlohmann::json merge_columns(const std::vector<const nlohmann::json*>& parts, co
     std::set<std::string> seen;
     for (const nlohmann::json* s : summaries)
       for (const nlohmann::json& ep : s->at("results"))
-        if (!seen.insert(episode_name(ep)).second)
+        if (!seen.insert(episode_key(ep)).second)
           throw std::invalid_argument("merge: row '" + row + "', column '" + column + "': episode " +
-                                      episode_name(ep) + " is in two runs (the same --seed twice?)");
+                                      episode_key(ep) + " is in two runs (the same --seed twice?)");
     merged[column] = merge_summaries(summaries);
   }
   return merged;

@@ -37,6 +37,13 @@ std::vector<EvaluationRow> paper_table() {
   };
 }
 
+std::string target_key(const std::string& anatomy, int target) { return anatomy + " T" + std::to_string(target); }
+
+std::string episode_key(const nlohmann::json& ep) {
+  return target_key(ep["anatomy"].get<std::string>(), ep["target"].get<int>()) + " seed " +
+         std::to_string(ep["seed"].get<std::uint64_t>());
+}
+
 namespace {
 
 // Episodes spread round-robin over the row's anatomies, each target drawn from a seeded generator.
@@ -51,7 +58,6 @@ std::vector<EpisodeRequest> row_requests(const NavigationTask& task, int episode
   return out;
 }
 
-std::string target_key(const std::string& anatomy, int target) { return anatomy + " T" + std::to_string(target); }
 
 // The targets of a row that no column reached in any episode, probed with the rotation schedules
 // (a target some controller reached is reachable by definition and costs nothing).
@@ -83,11 +89,6 @@ nlohmann::json row_reachability(const NavigationTask& task, const nlohmann::json
     out.push_back(j);
   }
   return out;
-}
-
-std::string episode_key(const nlohmann::json& ep) {
-  return target_key(ep["anatomy"].get<std::string>(), ep["target"].get<int>()) + " seed " +
-         std::to_string(ep["seed"].get<std::uint64_t>());
 }
 
 // Per episode (anatomy, target, seed): did some column reach it, and if none did, does some rotation

@@ -52,6 +52,11 @@ std::vector<Anatomy> load_row_anatomies(const EvaluationRow& row, const Evaluati
 // anatomy or policy is missing are kept with a "skipped" reason.
 nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const EvaluationOptions& options);
 
+// How the table names a target ("coronary T3") and an episode ("coronary T3 seed 7") in its cells,
+// failure modes and results.json, so that runs and their columns can be matched by these names.
+std::string target_key(const std::string& anatomy, int target);
+std::string episode_key(const nlohmann::json& episode);  // an entry of a summary's "results"
+
 // The table as Markdown: case | episodes | SAC | push-only | scripted omega (both turn directions) | paper |
 // SAC vs paper (Fisher's exact test) | SAC on reachable targets | SAC vs scripted | reached by a controller or
 // rotation schedule, then per row the failure modes seen (outcome counts, places, unreachable targets and

@@ -1,11 +1,19 @@
-"""Under scripts/test.sh (GW_TESTS_STRICT=1) no test may skip.
+"""Shared test plumbing.
 
-The tests skip when a binary they drive is not built, which is right for someone running one file
-by hand but would let CI pass without running them (a wrong GW_BUILD_DIR skips almost everything).
+Under scripts/test.sh (GW_TESTS_STRICT=1) no test may skip. The tests skip when a binary they drive
+is not built, which is right for someone running one file by hand but would let CI pass without
+running them (a wrong GW_BUILD_DIR skips almost everything).
 """
+import json
 import os
+import subprocess
+from pathlib import Path
 
 import pytest
+
+import guidewire_nav
+
+REPO = Path(__file__).resolve().parents[2]
 
 
 @pytest.hookimpl(hookwrapper=True)
@@ -15,3 +23,21 @@ def pytest_runtest_makereport(item, call):
     if report.skipped and os.environ.get("GW_TESTS_STRICT") == "1":
         report.outcome = "failed"
         report.longrepr = f"skipped, and GW_TESTS_STRICT=1 forbids skips: {report.longrepr}"
+
+
+@pytest.fixture
+def navigate_episode(tmp_path):
+    """run(controller) -> (observations, actions) of one C++ `navigate` episode (t1_straight_y, target 1,
+    seed 3) from its trajectory JSON. Frame 0 is the reset; frame k+1 holds the action taken on frame k."""
+    navigate = guidewire_nav.app_path("navigate")
+    if not navigate.is_file():
+        pytest.skip(f"navigate not built ({navigate}); set GW_BUILD_DIR")
+
+    def run(controller: str):
+        subprocess.run([str(navigate), "--anatomy", str(REPO / "anatomies/train/t1_straight_y/t1_straight_y.stl"),
+                        "--target", "1", "--episodes", "1", "--seed", "3", "--controller", controller,
+                        "--out", str(tmp_path)], check=True, capture_output=True)
+        frames = json.loads((tmp_path / "episode0_target1.json").read_text())["frames"]
+        return frames["observation"], frames["action"]
+
+    return run

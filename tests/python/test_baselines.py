@@ -1,13 +1,8 @@
 """The Python baselines: each acts as its C++ namesake, and a short run reports what it did."""
 
-import json
-import subprocess
-from pathlib import Path
-
 import numpy as np
 import pytest
 
-import guidewire_nav
 from guidewire_nav import baselines
 from guidewire_nav.env import find_server_binary
 
@@ -47,17 +42,9 @@ def test_short_run_on_a_training_pattern():
 @pytest.mark.parametrize("cpp_name, controller", [("scripted-omega", baselines.OmegaController()),
                                                   ("scripted-omega-ccw", baselines.OmegaControllerCCW()),
                                                   ("push-only", baselines.PushOnly())])
-def test_each_baseline_acts_as_its_cpp_namesake(tmp_path, cpp_name, controller):
+def test_each_baseline_acts_as_its_cpp_namesake(navigate_episode, cpp_name, controller):
     """Replaying a C++ episode's observations through the Python baseline gives the C++ actions."""
-    navigate = guidewire_nav.app_path("navigate")
-    if not navigate.is_file():
-        pytest.skip(f"navigate not built ({navigate}); set GW_BUILD_DIR")
-    repo = Path(__file__).resolve().parents[2]
-    subprocess.run([str(navigate), "--anatomy", str(repo / "anatomies/train/t1_straight_y/t1_straight_y.stl"),
-                    "--target", "1", "--episodes", "1", "--seed", "3", "--controller", cpp_name, "--out", str(tmp_path)],
-                   check=True, capture_output=True)
-    frames = json.loads((tmp_path / "episode0_target1.json").read_text())["frames"]
-    observations, actions = frames["observation"], frames["action"]
+    observations, actions = navigate_episode(cpp_name)
     python = [controller(np.asarray(o)) for o in observations[:-1]]
     assert python == pytest.approx(actions[1:], abs=1e-9)  # frame k+1 holds the action taken on frame k
     if cpp_name.startswith("scripted"):  # both branches of the rule were exercised: turning and holding

@@ -1,12 +1,9 @@
 """guidewire_nav.feasibility: rotation-only schedules tell a reachable target from one no schedule reaches."""
 
 import json
-import subprocess
-from pathlib import Path
 
 import pytest
 
-import guidewire_nav
 from guidewire_nav import feasibility
 from guidewire_nav.env import find_server_binary
 
@@ -36,21 +33,12 @@ def test_bad_cases_and_schedules_are_refused():
         feasibility.main(["--cases", "t1_straight_y:1", "--schedules", "teleport"])
 
 
-REPO = Path(__file__).resolve().parents[2]
-
 
 @pytest.mark.parametrize("name", sorted(feasibility.SCHEDULES))
-def test_each_schedule_acts_as_its_cpp_namesake(tmp_path, name):
+def test_each_schedule_acts_as_its_cpp_namesake(navigate_episode, name):
     """The schedules are written twice (here and apps/runner/rotation_schedules.cpp): replaying the
     observations of a C++ episode through the Python rule must give the C++ actions, step by step."""
-    navigate = guidewire_nav.app_path("navigate")
-    if not navigate.is_file():
-        pytest.skip(f"navigate not built ({navigate}); set GW_BUILD_DIR")
-    subprocess.run([str(navigate), "--anatomy", str(REPO / "anatomies/train/t1_straight_y/t1_straight_y.stl"),
-                    "--target", "1", "--episodes", "1", "--seed", "3", "--controller", name, "--out", str(tmp_path)],
-                   check=True, capture_output=True)
-    frames = json.loads((tmp_path / "episode0_target1.json").read_text())["frames"]
-    observations, actions = frames["observation"], frames["action"]
+    observations, actions = navigate_episode(name)
     assert len(actions) > 100  # frame 0 is the reset (no action); frame k+1 holds the action taken on frame k
     python = [feasibility.SCHEDULES[name](observations[k], k) for k in range(len(actions) - 1)]
     assert python == pytest.approx(actions[1:], abs=1e-9)

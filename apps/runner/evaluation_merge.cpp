@@ -104,6 +104,7 @@ nlohmann::json merge_columns(const std::vector<const nlohmann::json*>& parts, co
 nlohmann::json merge_row(const std::vector<const nlohmann::json*>& parts, const std::string& row,
                          const RunName& name_of) {
   nlohmann::json merged = *parts[0];
+  merged["paper_episodes"] = paper_episodes(merged);
   merged["episodes"] = 0;
   merged["wall_time_s"] = 0.0;
   merged["notes"] = nlohmann::json::array();
@@ -147,8 +148,8 @@ nlohmann::json merge_evaluations(const std::vector<nlohmann::json>& runs, const 
     for (std::size_t i = 0; i < runs.size(); ++i) {
       const nlohmann::json* r = find_row(runs[i], row);
       if (!r) throw std::invalid_argument("merge: row '" + row + "' is in " + name_of(0) + " but not in " + name_of(i));
-      if (r->value("paper", -1.0) != first.value("paper", -1.0) ||
-          r->value("paper_episodes", -1) != first.value("paper_episodes", -1))
+      // paper_episodes() falls back to the paper's table for runs written before rows recorded it
+      if (r->value("paper", -1.0) != first.value("paper", -1.0) || paper_episodes(*r) != paper_episodes(first))
         throw std::invalid_argument("merge: row '" + row + "' has a different paper figure in " + name_of(i));
       parts.push_back(r);
     }

@@ -211,6 +211,13 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
             {"reachability_seeds", o.reachability_seeds}}}};
 }
 
+int paper_episodes(const nlohmann::json& row) {
+  if (row.contains("paper_episodes")) return row["paper_episodes"].get<int>();
+  for (const EvaluationRow& r : paper_table())
+    if (r.name == row.value("name", "")) return r.episodes;
+  return 0;
+}
+
 namespace {
 
 // Keys ("anatomy Tn") of the row's targets that no rotation schedule reached.
@@ -283,15 +290,6 @@ std::string sac_vs(const nlohmann::json& results, const std::string& column) {
   if (c.paired == 0) return "—";
   return "won " + std::to_string(c.only_first) + ", lost " + std::to_string(c.only_second) + " (" +
          p_text(c.sign_test_p) + ")";
-}
-
-// How many episodes the paper's figure is of: the row's own record, else the paper's table by name
-// (results.json files written before rows carried it), else 0 (unknown).
-int paper_episodes(const nlohmann::json& row) {
-  if (row.contains("paper_episodes")) return row["paper_episodes"].get<int>();
-  for (const EvaluationRow& r : paper_table())
-    if (r.name == row.value("name", "")) return r.episodes;
-  return 0;
 }
 
 // SAC's rate against the paper's on different episodes: "-8 points (p 0.20)" with Fisher's exact test

@@ -56,6 +56,9 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
 // failure modes and results.json, so that runs and their columns can be matched by these names.
 std::string target_key(const std::string& anatomy, int target);
 std::string episode_key(const nlohmann::json& episode);  // an entry of a summary's "results"
+// How many episodes a results.json row's paper figure is of: the row's own record, else the paper's
+// table by name (results.json files written before rows carried it), else 0 (unknown).
+int paper_episodes(const nlohmann::json& row);
 
 // The table as Markdown: case | episodes | SAC | push-only | scripted omega (both turn directions) | paper |
 // SAC vs paper (Fisher's exact test) | SAC on reachable targets | SAC vs scripted | reached by a controller or

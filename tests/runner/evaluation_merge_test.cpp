@@ -105,6 +105,22 @@ TEST_CASE("merge: runs that do not fit together are refused by name", "[runner][
   CHECK_THROWS(gw::merge_evaluations({}, {}));
 }
 
+TEST_CASE("merge: a run written before rows recorded the paper's episode count joins a newer one", "[runner][merge]") {
+  // The older run's row has no paper_episodes: the paper's table gives 50 for the coronary row, the
+  // count the newer run recorded. The joined row records it.
+  const nlohmann::json older = run(0, {true, false}, {true, true}, 2);
+  nlohmann::json newer = run(1000, {true, true}, {true, false}, 2);
+  newer["rows"][0]["paper_episodes"] = 50;
+  for (const auto& runs : {std::vector<nlohmann::json>{older, newer}, std::vector<nlohmann::json>{newer, older}}) {
+    const nlohmann::json m = gw::merge_evaluations(runs, {"a.json", "b.json"});
+    CHECK(m["rows"][0]["paper_episodes"] == 50);
+    CHECK(m["rows"][0]["results"]["sac-policy"]["successes"] == 3);
+  }
+  newer["rows"][0]["paper_episodes"] = 100;  // a count the paper's table does not give: refused
+  CHECK_THROWS_WITH(gw::merge_evaluations({older, newer}, {"a.json", "b.json"}),
+                    Catch::Contains("different paper figure in b.json"));
+}
+
 TEST_CASE("merge: a row one run skipped stays skipped, with the reason", "[runner][merge]") {
   nlohmann::json skipped = run(10, {true}, {true}, 1);
   skipped["rows"][0]["skipped"] = "no policy trained on sensitivity/base only";

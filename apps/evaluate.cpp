@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
   app.add_option("--intermediate-target", o.intermediate_target_mm,
                  "trees: lambda is measured to a point this many mm past each bifurcation (0 = at the hand-over)");
   app.add_option("--threads", o.threads, "episodes run in parallel");
-  app.add_option("--rows", rows_filter, "only rows whose name contains this text");
+  app.add_option("--rows", rows_filter, "only rows whose name contains one of these comma-separated texts (coronary,var1)");
   app.add_option("--out", out_dir, "folder for results.md and results.json");
   std::string controllers = "policy,push-only,scripted-omega,scripted-omega-ccw";
   app.add_option("--reachability-seeds", o.reachability_seeds,
@@ -114,11 +114,7 @@ int main(int argc, char** argv) {
                                     "' (expected policy, push-only, scripted-omega or scripted-omega-ccw)");
     if (o.controllers.empty()) throw std::invalid_argument("--controllers names no controller");
     if (!std::filesystem::exists(o.base_policy)) o.base_policy.clear();
-    std::vector<gw::EvaluationRow> rows;
-    for (const gw::EvaluationRow& r : gw::paper_table())
-      if (rows_filter.empty() || r.name.find(rows_filter) != std::string::npos) rows.push_back(r);
-    if (rows.empty()) throw std::invalid_argument("no row of the table matches --rows '" + rows_filter + "'");
-    const nlohmann::json result = gw::run_evaluation(rows, o);
+    const nlohmann::json result = gw::run_evaluation(gw::select_rows(gw::paper_table(), rows_filter), o);
     std::filesystem::create_directories(out_dir);
     gw::write_file_atomic(out_dir + "/results.json", result.dump(2) + "\n");
     write_markdown(result, out_dir);

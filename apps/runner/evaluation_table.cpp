@@ -211,6 +211,28 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
             {"reachability_seeds", o.reachability_seeds}}}};
 }
 
+std::vector<EvaluationRow> select_rows(const std::vector<EvaluationRow>& table, const std::string& filter) {
+  if (filter.empty()) return table;
+  std::vector<std::string> texts;
+  for (std::size_t a = 0; a <= filter.size();) {
+    const std::size_t b = std::min(filter.find(',', a), filter.size());
+    if (b > a) texts.push_back(filter.substr(a, b - a));
+    a = b + 1;
+  }
+  if (texts.empty()) throw std::invalid_argument("--rows '" + filter + "' names no row");
+  std::vector<bool> keep(table.size(), false);
+  for (const std::string& t : texts) {
+    bool matched = false;
+    for (std::size_t i = 0; i < table.size(); ++i)
+      if (table[i].name.find(t) != std::string::npos) keep[i] = matched = true;
+    if (!matched) throw std::invalid_argument("no row of the table matches --rows '" + t + "'");
+  }
+  std::vector<EvaluationRow> out;
+  for (std::size_t i = 0; i < table.size(); ++i)
+    if (keep[i]) out.push_back(table[i]);
+  return out;
+}
+
 int paper_episodes(const nlohmann::json& row) {
   if (row.contains("paper_episodes")) return row["paper_episodes"].get<int>();
   for (const EvaluationRow& r : paper_table())

@@ -23,6 +23,10 @@ struct EvaluationRow {
 // The rows of the paper's table, in its order.
 std::vector<EvaluationRow> paper_table();
 
+// The rows of `table` (in its order) whose name contains one of the comma-separated texts of `filter`
+// ("" = all). Throws naming a text that matches no row, so a typo is not silently a shorter table.
+std::vector<EvaluationRow> select_rows(const std::vector<EvaluationRow>& table, const std::string& filter);
+
 struct EvaluationOptions {
   std::string policy;                 // actor JSON of the shipped policy
   std::string base_policy;            // actor JSON trained on sensitivity/base only ("" = skip those rows)

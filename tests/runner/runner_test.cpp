@@ -407,6 +407,20 @@ TEST_CASE("evaluation table: the paper's rows and a Markdown table that says why
   CHECK(ceiling.find("coronary T3 goal 2/3 [unreachable] x2 out-of-reach 1") != std::string::npos);
 }
 
+TEST_CASE("evaluate --rows: comma-separated texts pick rows in the table's order, a text matching none is refused",
+          "[runner]") {
+  const auto table = gw::paper_table();
+  CHECK(gw::select_rows(table, "").size() == table.size());
+  const auto picked = gw::select_rows(table, "var1,coronary");  // asked out of order: the table's order
+  REQUIRE(picked.size() == 3);
+  CHECK(picked[0].name == "sensitivity: var1");
+  CHECK(picked[1].name == "coronary-like");
+  CHECK(picked[2].name == "deformed coronary");
+  CHECK(gw::select_rows(table, "coronary,deformed").size() == 2);  // a row two texts match is kept once
+  CHECK_THROWS_WITH(gw::select_rows(table, "var1,coronery"), Catch::Contains("--rows 'coronery'"));
+  CHECK_THROWS_WITH(gw::select_rows(table, ","), Catch::Contains("names no row"));
+}
+
 TEST_CASE("the table's ceiling: episodes no controller reached are re-run from the same start with the rotation "
           "schedules",
           "[runner]") {

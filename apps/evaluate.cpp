@@ -102,12 +102,7 @@ int main(int argc, char** argv) {
       throw std::invalid_argument("--centerlines must be 'extract' or 'truth', got '" + centerlines + "'");
     o.extract_centerlines = centerlines == "extract";
     o.progress = true;
-    o.controllers.clear();
-    for (std::size_t a = 0; a <= controllers.size();) {
-      const std::size_t b = std::min(controllers.find(',', a), controllers.size());
-      if (b > a) o.controllers.push_back(controllers.substr(a, b - a));
-      a = b + 1;
-    }
+    o.controllers = gw::split_commas(controllers);
     for (const std::string& c : o.controllers)
       if (c != "policy" && c != "push-only" && c != "scripted-omega" && c != "scripted-omega-ccw")
         throw std::invalid_argument("--controllers: unknown controller '" + c +

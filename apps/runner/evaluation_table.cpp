@@ -213,12 +213,7 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
 
 std::vector<EvaluationRow> select_rows(const std::vector<EvaluationRow>& table, const std::string& filter) {
   if (filter.empty()) return table;
-  std::vector<std::string> texts;
-  for (std::size_t a = 0; a <= filter.size();) {
-    const std::size_t b = std::min(filter.find(',', a), filter.size());
-    if (b > a) texts.push_back(filter.substr(a, b - a));
-    a = b + 1;
-  }
+  const std::vector<std::string> texts = split_commas(filter);
   if (texts.empty()) throw std::invalid_argument("--rows '" + filter + "' names no row");
   std::vector<bool> keep(table.size(), false);
   for (const std::string& t : texts) {

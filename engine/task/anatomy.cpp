@@ -41,12 +41,6 @@ Anatomy load_anatomy(const std::string& name, const std::string& mesh_path, cons
   }
 }
 
-namespace {
-
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 std::vector<std::string> split_commas(const std::string& spec) {
   std::vector<std::string> items;
   std::string cur;
@@ -60,6 +54,12 @@ std::vector<std::string> split_commas(const std::string& spec) {
     }
   }
   return items;
+}
+
+namespace {
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 struct IndexEntry {

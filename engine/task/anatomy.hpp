@@ -47,4 +47,8 @@ std::vector<Anatomy> load_anatomies(const std::string& spec, const std::string& 
 // overridden by the environment variable GW_ANATOMY_INDEX when set.
 std::string default_anatomy_index();
 
+// The items of a comma list ("t1, t2,,t3"), trimmed, empty ones dropped: --anatomies, and the apps'
+// other list flags (--rows, --controllers).
+std::vector<std::string> split_commas(const std::string& spec);
+
 }  // namespace gw

@@ -86,6 +86,16 @@ std::vector<EpisodeTrace> run_batch(const NavigationTask& task, const std::vecto
   return traces;
 }
 
+bool tip_folded_before_loss(const EpisodeTrace& trace) {
+  if (trace.outcome != "wrong_branch" || trace.time_s.empty() || trace.observation.size() != trace.time_s.size())
+    return false;
+  const double end = trace.time_s.back();
+  for (std::size_t f = trace.time_s.size(); f-- > 0 && end - trace.time_s[f] <= kFoldWindowS;)
+    if (trace.observation[f].size() > obs_index::kTheta && trace.observation[f][obs_index::kTheta] < kFoldedTheta)
+      return true;
+  return false;
+}
+
 nlohmann::json summarize_episodes(const std::vector<EpisodeTrace>& traces) {
   nlohmann::json outcomes = nlohmann::json::object();
   for (const std::string& o : kTraceOutcomes) outcomes[o] = 0;
@@ -103,6 +113,7 @@ nlohmann::json summarize_episodes(const std::vector<EpisodeTrace>& traces) {
                        {"steps", t.time_s.empty() ? 0 : static_cast<int>(t.time_s.size()) - 1},
                        {"sim_time_s", t.time_s.empty() ? 0.0 : t.time_s.back()}});
     if (!std::isnan(t.omega_at_loss)) results.back()["omega_at_loss"] = t.omega_at_loss;
+    if (t.outcome == "wrong_branch") results.back()["folded"] = tip_folded_before_loss(t);
   }
   const int n = static_cast<int>(traces.size());
   return {{"episodes", n},

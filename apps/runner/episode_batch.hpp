@@ -36,9 +36,18 @@ std::vector<EpisodeTrace> run_batch(const NavigationTask& task, const std::vecto
                                     int threads, const TraceOptions& options,
                                     const std::function<void(int, int)>& progress = {});
 
+// A wrong-branch loss where the tip folded over first: in the last kFoldWindowS seconds before the
+// loss the tip's distal tangent pointed back down the vessel (theta_t_1 = t_1 . c_1 below
+// kFoldedTheta). Seen on the deformed coronary: a tip caught on the wall while the wire is turned
+// buckles and snaps back, and the folded wire goes into the wrong branch whatever omega was at the
+// fork. False for any other outcome or a trace without observations.
+inline constexpr double kFoldedTheta = -0.5;
+inline constexpr double kFoldWindowS = 1.0;
+bool tip_folded_before_loss(const EpisodeTrace& trace);
+
 // {"episodes", "successes", "success_rate", "outcomes": {outcome: count}, "results": [per episode:
 // anatomy, controller, target, seed, outcome, detail, steps, sim_time_s, and for a wrong branch
-// omega_at_loss (EpisodeTrace)]}.
+// omega_at_loss (EpisodeTrace) and "folded" (tip_folded_before_loss)]}.
 nlohmann::json summarize_episodes(const std::vector<EpisodeTrace>& traces);
 
 }  // namespace gw

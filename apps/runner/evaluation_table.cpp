@@ -358,6 +358,8 @@ struct PlaceCount {
   int episodes = 0;
   int measured = 0;  // episodes that carry omega_at_loss
   int aimed = 0;
+  int fold_measured = 0;  // episodes that carry "folded" (older results.json files do not)
+  int folded = 0;         // the tip folded over before the loss (tip_folded_before_loss)
   int out_of_reach = 0;  // episodes no controller of the row and no rotation schedule reached
 };
 
@@ -381,6 +383,10 @@ std::string failure_modes(const nlohmann::json& summary, const std::set<std::str
         PlaceCount& c = places[place];
         ++c.episodes;
         if (ep.contains("seed") && out_of_reach.count(episode_key(ep))) ++c.out_of_reach;
+        if (ep.contains("folded") && ep["folded"].is_boolean()) {
+          ++c.fold_measured;
+          c.folded += ep["folded"].get<bool>();
+        }
         if (ep.contains("omega_at_loss") && ep["omega_at_loss"].is_number()) {
           ++c.measured;
           c.aimed += ep["omega_at_loss"].get<double>() <= kAimedOmega;
@@ -396,6 +402,9 @@ std::string failure_modes(const nlohmann::json& summary, const std::set<std::str
         const PlaceCount& c = sorted[i].second;
         text += (i ? ", " : "") + sorted[i].first + " x" + std::to_string(c.episodes);
         if (c.measured > 0) text += " aimed " + std::to_string(c.aimed);
+        if (c.folded > 0)
+          text += " folded " + std::to_string(c.folded) +
+                  (c.fold_measured < c.episodes ? " of " + std::to_string(c.fold_measured) : "");
         if (c.out_of_reach > 0) text += " out-of-reach " + std::to_string(c.out_of_reach);
       }
       text += ")";
@@ -440,7 +449,10 @@ std::string evaluation_to_markdown(const nlohmann::json& e) {
         "the rotation schedules of apps/runner/rotation_schedules.hpp did either; aimed k: in k of those "
         "episodes omega was <= -0.9 when the tip reached that bifurcation's centre (or when it failed, if "
         "it went in before), i.e. the tip was bent "
-        "away from the wrong branch and the wire went in anyway; out-of-reach k: k of those episodes "
+        "away from the wrong branch and the wire went in anyway; folded k: in k of those episodes the tip "
+        "pointed back down the vessel (theta_1 < -0.5) in the second before the loss: it caught, the wire "
+        "buckled and the folded wire went in (\"of m\": only m of them recorded it; older "
+        "results.json files do not); out-of-reach k: k of those episodes "
         "neither a controller of the row nor a rotation schedule reached from the same start):\n\n";
   for (const nlohmann::json& r : e["rows"]) {
     md << "- **" << r["name"].get<std::string>() << "**: ";

@@ -121,6 +121,23 @@ TEST_CASE("merge: a run written before rows recorded the paper's episode count j
                     Catch::Contains("different paper figure in b.json"));
 }
 
+TEST_CASE("failure modes: folded losses are counted, and runs that did not record folds are said to", "[runner][merge]") {
+  // Seeds 0-3: SAC loses seeds 1 and 3 (both wrong_branch on coronary T1).
+  nlohmann::json a = run(0, {true, false, true, false}, {true, true, true, true}, 4);
+  nlohmann::json& eps = a["rows"][0]["results"]["sac-policy"]["results"];
+  eps[1]["folded"] = true;
+  eps[1]["omega_at_loss"] = -0.99;
+  eps[3]["folded"] = false;
+  eps[3]["omega_at_loss"] = -0.99;
+  std::string md = gw::evaluation_to_markdown(a);
+  CHECK(md.find("sac-policy: wrong_branch 2 (coronary T1 x2 aimed 2 folded 1)") != std::string::npos);
+  // Joined with a run written before "folded" existed: 1 folded of the 2 losses that recorded it.
+  nlohmann::json b = run(1000, {false}, {true}, 1);
+  b["rows"][0]["results"]["sac-policy"]["results"][0]["omega_at_loss"] = -0.99;
+  md = gw::evaluation_to_markdown(gw::merge_evaluations({a, b}, {"a", "b"}));
+  CHECK(md.find("sac-policy: wrong_branch 3 (coronary T1 x3 aimed 3 folded 1 of 2)") != std::string::npos);
+}
+
 TEST_CASE("merge: a row one run skipped stays skipped, with the reason", "[runner][merge]") {
   nlohmann::json skipped = run(10, {true}, {true}, 1);
   skipped["rows"][0]["skipped"] = "no policy trained on sensitivity/base only";

@@ -251,6 +251,61 @@ TEST_CASE("a wrong branch records omega when the tip reached the lost bifurcatio
   CHECK(std::isnan(gw::trace_from_json(gw::trace_to_json(right[0]), "test").omega_at_loss));
 }
 
+TEST_CASE("a loss where the tip folded over first is told apart from an aimed one", "[runner]") {
+  // Synthetic traces: 2 s of frames every 40 ms, theta_t_1 = 0.9 except where set.
+  auto trace = [](const std::string& outcome, double fold_at_s) {
+    gw::EpisodeTrace t;
+    t.outcome = outcome;
+    for (int f = 0; f <= 50; ++f) {
+      t.time_s.push_back(0.04 * f);
+      std::vector<double> obs(gw::kObservationSize, 0.0);
+      obs[gw::obs_index::kTheta] = std::abs(0.04 * f - fold_at_s) < 0.02 ? -0.98 : 0.9;
+      t.observation.push_back(obs);
+    }
+    return t;
+  };
+  CHECK(gw::tip_folded_before_loss(trace("wrong_branch", 1.6)));        // 0.4 s before the loss
+  CHECK_FALSE(gw::tip_folded_before_loss(trace("wrong_branch", 0.4)));  // 1.6 s before: not this loss
+  CHECK_FALSE(gw::tip_folded_before_loss(trace("wrong_branch", -1)));   // never folded
+  CHECK_FALSE(gw::tip_folded_before_loss(trace("success", 1.6)));       // only losses are told
+  gw::EpisodeTrace no_obs = trace("wrong_branch", 1.6);
+  no_obs.observation.clear();
+  CHECK_FALSE(gw::tip_folded_before_loss(no_obs));
+
+  // The summary records it for every wrong branch, and the table's failure modes count it.
+  const nlohmann::json summary =
+      gw::summarize_episodes({trace("wrong_branch", 1.6), trace("wrong_branch", -1), trace("success", 1.6)});
+  CHECK(summary["results"][0]["folded"] == true);
+  CHECK(summary["results"][1]["folded"] == false);
+  CHECK_FALSE(summary["results"][2].contains("folded"));
+}
+
+TEST_CASE("the deformed coronary's T3 fold-back: the shipped actor's caught tip folds over, the scripted rule "
+          "passes",
+          "[runner][policy][fold]") {
+  // README, "A failure mode only SAC has": seed 30 is one of the six table episodes where the actor,
+  // aimed, turns a caught tip, the tip snaps back and the folded wire goes into the wrong branch.
+  const std::string mesh = std::string(GW_SOURCE_DIR) + "/anatomies/test/coronary_deformed/coronary_deformed.stl";
+  const gw::NavigationAnatomy nav = gw::load_navigation_anatomy(mesh);  // extracted, as evaluate does
+  auto run = [&](const std::string& kind, int target, std::uint64_t seed) {
+    auto make = [&] { return gw::make_controller(kind, gw::default_policy_path()); };
+    gw::TaskConfig config;
+    make()->adapt(config);
+    const gw::NavigationTask task = gw::make_navigation_task(config, gw::default_wire_params(), {nav.anatomy});
+    return gw::run_batch(task, {{0, target, seed}}, make, 1, {}).front();
+  };
+  const gw::EpisodeTrace folded = run("policy", 3, 30);
+  REQUIRE(folded.outcome == "wrong_branch");
+  CHECK(folded.omega_at_loss <= -0.9);  // aimed at the fork's centre, so "aimed" alone would mislead
+  CHECK(gw::tip_folded_before_loss(folded));
+  CHECK(run("scripted-omega", 3, 30).outcome == "success");
+  // An aimed loss without a fold (T1 at D1, seed 0): the wire body goes into the wrong branch.
+  const gw::EpisodeTrace aimed = run("policy", 1, 0);
+  REQUIRE(aimed.outcome == "wrong_branch");
+  CHECK(aimed.omega_at_loss <= -0.9);
+  CHECK_FALSE(gw::tip_folded_before_loss(aimed));
+}
+
 TEST_CASE("navigation outputs: trajectories, VTK and a biplane PNG per target", "[runner]") {
   const ShortT1 t1(12);
   const auto traces = gw::run_batch(t1.task, gw::plan_episodes(t1.task, 0, "1", 1, 0),

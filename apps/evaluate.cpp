@@ -60,6 +60,8 @@ int main(int argc, char** argv) {
   app.add_option("--seed", o.seed, "episode k of a row uses seed S+k");
   app.add_option("--intermediate-target", o.intermediate_target_mm,
                  "trees: lambda is measured to a point this many mm past each bifurcation (0 = at the hand-over)");
+  app.add_option("--push-speed", o.push_mm_per_s,
+                 "constant insertion speed at the proximal end, mm/s (the shipped policy was trained at 10)");
   app.add_option("--threads", o.threads, "episodes run in parallel");
   app.add_option("--rows", rows_filter, "only rows whose name contains one of these comma-separated texts (coronary,var1)");
   app.add_option("--out", out_dir, "folder for results.md and results.json");

@@ -43,6 +43,8 @@ int main(int argc, char** argv) {
   app.add_option("--reward-omega-slope", config.reward.omega_slope,
                  "slope of the reward's omega sigmoid (paper Eq. 3: 5)")
       ->capture_default_str();
+  app.add_option("--push-speed", config.push_mm_per_s, "constant insertion speed at the proximal end, mm/s")
+      ->capture_default_str();
   app.add_option("--roll-disturbance", config.roll_disturbance_probability,
                  "training robustness: per-episode probability of an unannounced proximal roll of 45-180 deg "
                  "(0 = the paper's task)")

@@ -41,6 +41,7 @@ int main(int argc, char** argv) {
   int episodes = 1, threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   std::uint64_t seed = 0;
   double intermediate_target_mm = gw::TaskConfig{}.intermediate_target_mm;
+  double push_mm_per_s = gw::TaskConfig{}.push_mm_per_s;
   bool json = false, list = false, no_cache = false;
   app.add_option("--anatomy,anatomy", anatomy_path, "vessel surface (.stl, .obj, .ply), millimetres")->required();
   app.add_option("--target", target, "target number, 'all' or 'random' (see --list)");
@@ -57,6 +58,8 @@ int main(int argc, char** argv) {
   app.add_option("--intermediate-target", intermediate_target_mm,
                  "trees: lambda is measured to a point this many mm past each bifurcation (0 = at the hand-over, "
                  "20 mm past it)");
+  app.add_option("--push-speed", push_mm_per_s,
+                 "constant insertion speed at the proximal end, mm/s (the shipped policy was trained at 10)");
   app.add_option("--threads", threads, "episodes run in parallel");
   app.add_option("--out", out_dir, "write trajectories (JSON, VTK .vtp) and biplane PNGs here");
   app.add_flag("--json", json, "print one JSON summary on stdout");
@@ -79,6 +82,7 @@ int main(int argc, char** argv) {
     gw::TaskConfig config;
     make_controller()->adapt(config);  // an actor trained on the paper's omega gets the paper's omega
     config.intermediate_target_mm = intermediate_target_mm;
+    config.push_mm_per_s = push_mm_per_s;  // make_navigation_task refuses a speed that is not > 0
 
     const gw::WireParams wire = wire_path.empty() ? gw::default_wire_params() : gw::load_wire_params(wire_path);
     const gw::NavigationTask task = gw::make_navigation_task(config, wire, {nav.anatomy});
@@ -111,6 +115,7 @@ int main(int argc, char** argv) {
                              {"targets", nav.anatomy.graph.targets.size()},
                              {"bifurcations", nav.anatomy.graph.bifurcations.size()}};
     summary["intermediate_target_mm"] = intermediate_target_mm;
+    summary["push_mm_per_s"] = push_mm_per_s;
     summary["wall_time_s"] = wall;
     if (!out_dir.empty()) {
       // The PNG's own summary line names anatomy, target, controller and (for one episode) the seed; this

@@ -136,6 +136,14 @@ nlohmann::json merge_row(const std::vector<const nlohmann::json*>& parts, const 
 nlohmann::json merge_evaluations(const std::vector<nlohmann::json>& runs, const std::vector<std::string>& names) {
   if (runs.empty()) throw std::invalid_argument("merge: no results to merge");
   const RunName name_of = [&](std::size_t i) { return i < names.size() ? names[i] : "run " + std::to_string(i + 1); };
+  const nlohmann::json settings0 = run_task_settings(runs[0]);
+  for (std::size_t i = 1; i < runs.size(); ++i) {
+    const nlohmann::json settings = run_task_settings(runs[i]);  // named: items() of a temporary would dangle
+    for (const auto& [key, value] : settings.items())
+      if (value != settings0[key])
+        throw std::invalid_argument("merge: " + name_of(i) + " ran with " + key + " " + value.dump() + ", " +
+                                    name_of(0) + " with " + settings0[key].dump() + ": different experiments");
+  }
   for (std::size_t i = 1; i < runs.size(); ++i)  // rows only a later run has would vanish silently
     for (const nlohmann::json& r : runs[i]["rows"])
       if (!find_row(runs[0], r.value("name", "")))

@@ -170,6 +170,7 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
       const std::vector<Anatomy> anatomies = load_row_anatomies(row, o);
       TaskConfig base_config;
       base_config.intermediate_target_mm = o.intermediate_target_mm;
+      base_config.push_mm_per_s = o.push_mm_per_s;
       const NavigationTask default_task = make_navigation_task(base_config, default_wire_params(), anatomies);
       const std::vector<EpisodeRequest> requests = row_requests(default_task, episodes, o.seed);
       TraceOptions trace;
@@ -206,9 +207,19 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
           {"settings",
            {{"policy", o.policy}, {"base_policy", o.base_policy}, {"seed", o.seed},
             {"intermediate_target_mm", o.intermediate_target_mm},
+            {"push_mm_per_s", o.push_mm_per_s},
             {"centerlines", o.extract_centerlines ? "extracted (CGAL MCF)" : "ground truth"},
             {"episode_scale", o.episode_scale},
             {"reachability_seeds", o.reachability_seeds}}}};
+}
+
+nlohmann::json run_task_settings(const nlohmann::json& run) {
+  nlohmann::json s = run.value("settings", nlohmann::json::object());
+  if (s.contains("merged_from") && !s["merged_from"].empty()) s = s["merged_from"][0].value("settings", s);
+  const TaskConfig defaults;
+  return {{"push_mm_per_s", s.value("push_mm_per_s", defaults.push_mm_per_s)},
+          {"intermediate_target_mm", s.value("intermediate_target_mm", defaults.intermediate_target_mm)},
+          {"centerlines", s.value("centerlines", std::string("extracted (CGAL MCF)"))}};
 }
 
 std::vector<EvaluationRow> select_rows(const std::vector<EvaluationRow>& table, const std::string& filter) {
@@ -417,6 +428,11 @@ std::string failure_modes(const nlohmann::json& summary, const std::set<std::str
 
 std::string evaluation_to_markdown(const nlohmann::json& e) {
   std::ostringstream md;
+  // A run away from the task's defaults says so above its table: its rates are another experiment's.
+  const double push = run_task_settings(e)["push_mm_per_s"].get<double>();
+  if (push != TaskConfig{}.push_mm_per_s)
+    md << "Insertion speed " << push << " mm/s (the default, at which the policies were trained, is "
+       << TaskConfig{}.push_mm_per_s << " mm/s).\n\n";
   md << "| case | episodes | SAC (ours) | SAC, 95% interval | push-only | scripted omega | "
         "scripted omega, turning the other way | paper | SAC vs paper | SAC, reachable targets | "
         "SAC vs scripted (and the other way), same episodes | reached by a controller or rotation schedule |\n"

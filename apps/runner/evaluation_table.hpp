@@ -41,6 +41,7 @@ struct EvaluationOptions {
   // (reachability.hpp) from this many seeds each; 0 = do not probe.
   int reachability_seeds = 2;
   double intermediate_target_mm = TaskConfig{}.intermediate_target_mm;  // trees (task_config.hpp)
+  double push_mm_per_s = TaskConfig{}.push_mm_per_s;                    // insertion speed (task_config.hpp)
 };
 
 // A row's anatomies as the table runs them: centerlines extracted (or the truth when
@@ -60,6 +61,11 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
 // failure modes and results.json, so that runs and their columns can be matched by these names.
 std::string target_key(const std::string& anatomy, int target);
 std::string episode_key(const nlohmann::json& episode);  // an entry of a summary's "results"
+// The settings besides the seed that a results.json's episodes depend on: {push_mm_per_s,
+// intermediate_target_mm, centerlines}. Runs that differ in one are different experiments (another
+// insertion speed, other centerlines), and a table joining them would mean neither. A setting a run did
+// not record is the default it ran with; a joined run has its first input's.
+nlohmann::json run_task_settings(const nlohmann::json& run);
 // How many episodes a results.json row's paper figure is of: the row's own record, else the paper's
 // table by name (results.json files written before rows carried it), else 0 (unknown).
 int paper_episodes(const nlohmann::json& row);

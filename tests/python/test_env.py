@@ -1,6 +1,7 @@
 """GuidewireEnv: the gymnasium client of guidewire-server (checkers, determinism, vector envs, shutdown)."""
 
 import math
+import subprocess
 
 import numpy as np
 import pytest
@@ -160,6 +161,33 @@ def test_reward_shape_is_chosen_at_the_server_and_changes_only_the_reward(server
     finally:
         paper.close()
         steep.close()
+
+
+def test_push_speed_is_a_server_setting_and_sets_the_advance_per_step(server_bin):
+    # Same seed, no rotation: at 5 mm/s the tip closes on the target half as fast as at the default 10,
+    # and the spec says which speed the server runs. A speed that is not > 0 stops the server by name.
+    default = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1})
+    slow = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1}, server_args=["--push-speed", "5"])
+    try:
+        assert default.spec_reply["task"]["push_mm_per_s"] == 10.0
+        assert slow.spec_reply["task"]["push_mm_per_s"] == 5.0
+        a, _ = default.reset(seed=4)
+        b, _ = slow.reset(seed=4)
+        assert np.array_equal(a, b)
+        for _ in range(25):  # 10 mm and 5 mm in the straight access vessel
+            a, *_ = default.step(np.zeros(1, dtype=np.float32))
+            b, *_ = slow.step(np.zeros(1, dtype=np.float32))
+        closed_default, closed_slow = 1.0 - float(a[6]), 1.0 - float(b[6])
+        assert closed_default > 0.05
+        assert closed_slow == pytest.approx(0.5 * closed_default, rel=0.15)
+        assert 0.5 < float(b[10]) < 1.5  # s = v.c / push: normalised by the push speed
+    finally:
+        default.close()
+        slow.close()
+    refused = subprocess.run([str(server_bin), "--port", "0", "--anatomies", "t1_straight_y", "--push-speed", "0"],
+                             capture_output=True, text=True, timeout=60)
+    assert refused.returncode == 1
+    assert "push_mm_per_s" in refused.stderr
 
 
 def test_roll_disturbance_is_a_server_setting_and_changes_the_episode(server_bin):

@@ -105,6 +105,31 @@ TEST_CASE("merge: runs that do not fit together are refused by name", "[runner][
   CHECK_THROWS(gw::merge_evaluations({}, {}));
 }
 
+TEST_CASE("merge: runs under different task settings are different experiments and are refused", "[runner][merge]") {
+  const nlohmann::json a = run(0, {true, false}, {true, true}, 2);  // records no speed: it ran the default
+  nlohmann::json slow = run(10, {true}, {true}, 1);
+  slow["settings"]["push_mm_per_s"] = 5.0;
+  CHECK_THROWS_WITH(gw::merge_evaluations({a, slow}, {"a.json", "slow.json"}),
+                    Catch::Contains("slow.json ran with push_mm_per_s 5.0, a.json with 10.0"));
+  nlohmann::json truth = run(10, {true}, {true}, 1);
+  truth["settings"]["centerlines"] = "ground truth";
+  CHECK_THROWS_WITH(gw::merge_evaluations({a, truth}, {"a.json", "truth.json"}), Catch::Contains("centerlines"));
+  nlohmann::json same = run(10, {true}, {true}, 1);  // the defaults written out join one that left them out
+  same["settings"]["push_mm_per_s"] = 10.0;
+  same["settings"]["intermediate_target_mm"] = 50.0;
+  const nlohmann::json joined = gw::merge_evaluations({a, same}, {"a.json", "same.json"});
+  CHECK(joined["rows"][0]["episodes"] == 3);
+  // A joined run carries its inputs' settings and is checked by them in turn.
+  CHECK_THROWS_WITH(gw::merge_evaluations({joined, slow}, {"joined.json", "slow.json"}),
+                    Catch::Contains("push_mm_per_s"));
+  // The Markdown of a run (or a join of runs) at another speed says so above its table; the default's does not.
+  nlohmann::json slow2 = run(20, {false}, {true}, 1);
+  slow2["settings"]["push_mm_per_s"] = 5.0;
+  const std::string md = gw::evaluation_to_markdown(gw::merge_evaluations({slow, slow2}, {"s1", "s2"}));
+  CHECK(md.rfind("Insertion speed 5 mm/s (the default, at which the policies were trained, is 10 mm/s).", 0) == 0);
+  CHECK(gw::evaluation_to_markdown(joined).find("Insertion speed") == std::string::npos);
+}
+
 TEST_CASE("merge: a run written before rows recorded the paper's episode count joins a newer one", "[runner][merge]") {
   // The older run's row has no paper_episodes: the paper's table gives 50 for the coronary row, the
   // count the newer run recorded. The joined row records it.

@@ -111,6 +111,29 @@ TEST_CASE("stepping: wire advances, reward is Eq. 3 of the observation, action i
   CHECK_THROWS_WITH(gw::step_episode(task, s, NAN), Catch::Contains("finite"));
 }
 
+TEST_CASE("push speed: the insertion follows the set speed and the speed observation stays normalised",
+          "[task][episode]") {
+  // A robot inserts at its own speed (navigate/evaluate/guidewire-server --push-speed): half the speed,
+  // half the advance per step, and s = v.c / push still reads ~1 so an actor trained at 10 mm/s sees
+  // the observation it knows.
+  gw::TaskConfig slow;
+  slow.push_mm_per_s = 5.0;
+  const gw::NavigationTask task = free_space_task(gwtest::y_graph(), slow);
+  gw::EpisodeState s = gw::reset_episode(task, 0, 1, 3);
+  const double inserted0 = s.wire.inserted_length_mm;
+  gw::StepOutcome out;
+  for (int k = 0; k < 25; ++k) out = gw::step_episode(task, s, 0.0);
+  CHECK(s.wire.inserted_length_mm - inserted0 == Approx(25 * 4 * 0.01 * 5.0).epsilon(1e-6));
+  CHECK(out.obs[gw::obs_index::kSpeed] > 0.5);
+  CHECK(out.obs[gw::obs_index::kSpeed] < 1.5);
+  // A speed that is not > 0 is refused by name before any episode runs.
+  for (const double bad : {0.0, -3.0, static_cast<double>(NAN)}) {
+    gw::TaskConfig c;
+    c.push_mm_per_s = bad;
+    CHECK_THROWS_WITH(free_space_task(gwtest::y_graph(), c), Catch::Contains("push_mm_per_s"));
+  }
+}
+
 TEST_CASE("trees: the action applies only within the control radius of a bifurcation", "[task][episode]") {
   gw::TaskConfig config;
   config.control_radius_mm = 10.0;

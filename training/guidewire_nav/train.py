@@ -39,6 +39,8 @@ class Settings:
                                            #   rotation carries the bend towards -1 (observation.hpp says why)
     reward_omega_centre: float = 0.1       # reward sigmoid 2/(1+exp(slope(omega-centre)))-1; paper Eq. 3 is
     reward_omega_slope: float = 5.0        #   centre 0.1, slope 5 (engine/task/reward.hpp says why to change)
+    push_speed: float = 10.0               # constant insertion speed, mm/s (the paper does not state it; 10 = 0.4 mm
+                                           #   per 40 ms env step)
     roll_disturbance: float = 0.0          # per-episode probability of an unannounced 45-180 deg proximal
                                            #   roll (robustness; 0 = the paper's task, task_config.hpp says why)
     random_start: float = 0.0              # per-episode probability of starting part-way to the bifurcation
@@ -103,7 +105,7 @@ def git_commit() -> str:
 def server_args(s: Settings) -> list[str]:
     return ["--omega-plane", s.omega_plane, "--reward-omega-centre", repr(s.reward_omega_centre),
             "--reward-omega-slope", repr(s.reward_omega_slope), "--roll-disturbance", repr(s.roll_disturbance),
-            "--random-start", repr(s.random_start)] + (["--omega-side"] if s.omega_side else [])
+            "--random-start", repr(s.random_start), "--push-speed", repr(s.push_speed)] + (["--omega-side"] if s.omega_side else [])
 
 
 def make_env_fn(s: Settings, rank: int, eval_env: bool = False):

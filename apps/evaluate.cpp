@@ -62,6 +62,8 @@ int main(int argc, char** argv) {
                  "trees: lambda is measured to a point this many mm past each bifurcation (0 = at the hand-over)");
   app.add_option("--push-speed", o.push_mm_per_s,
                  "constant insertion speed at the proximal end, mm/s (the shipped policy was trained at 10)");
+  app.add_option("--wire", o.wire_path, "guidewire parameter JSON (default: the 0.014\" coronary wire the policies "
+                 "were trained with)");
   app.add_option("--threads", o.threads, "episodes run in parallel");
   app.add_option("--rows", rows_filter, "only rows whose name contains one of these comma-separated texts (coronary,var1)");
   app.add_option("--out", out_dir, "folder for results.md and results.json");

@@ -157,6 +157,8 @@ std::vector<Anatomy> load_row_anatomies(const EvaluationRow& row, const Evaluati
 }
 
 nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const EvaluationOptions& o) {
+  // A bad wire file is the caller's error for every row alike: refused here, not skipped row by row.
+  const WireParams wire = o.wire_path.empty() ? default_wire_params() : load_wire_params(o.wire_path);
   nlohmann::json out_rows = nlohmann::json::array();
   for (const EvaluationRow& row : rows) {
     const auto start = std::chrono::steady_clock::now();
@@ -171,7 +173,7 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
       TaskConfig base_config;
       base_config.intermediate_target_mm = o.intermediate_target_mm;
       base_config.push_mm_per_s = o.push_mm_per_s;
-      const NavigationTask default_task = make_navigation_task(base_config, default_wire_params(), anatomies);
+      const NavigationTask default_task = make_navigation_task(base_config, wire, anatomies);
       const std::vector<EpisodeRequest> requests = row_requests(default_task, episodes, o.seed);
       TraceOptions trace;
       trace.wire_shape_every = 0;
@@ -188,7 +190,7 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
         make()->adapt(config);  // an actor trained on the paper's omega (obs/1) is evaluated with it
         std::optional<NavigationTask> adapted;
         if (config.omega_plane != default_task.config.omega_plane)
-          adapted = make_navigation_task(config, default_wire_params(), anatomies);
+          adapted = make_navigation_task(config, wire, anatomies);
         const NavigationTask& task = adapted ? *adapted : default_task;
         const nlohmann::json summary = summarize_episodes(run_batch(task, requests, make, o.threads, trace));
         const std::string column = kind == "policy" ? "sac-policy" : kind;
@@ -208,6 +210,7 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
            {{"policy", o.policy}, {"base_policy", o.base_policy}, {"seed", o.seed},
             {"intermediate_target_mm", o.intermediate_target_mm},
             {"push_mm_per_s", o.push_mm_per_s},
+            {"wire", o.wire_path},
             {"centerlines", o.extract_centerlines ? "extracted (CGAL MCF)" : "ground truth"},
             {"episode_scale", o.episode_scale},
             {"reachability_seeds", o.reachability_seeds}}}};
@@ -219,7 +222,8 @@ nlohmann::json run_task_settings(const nlohmann::json& run) {
   const TaskConfig defaults;
   return {{"push_mm_per_s", s.value("push_mm_per_s", defaults.push_mm_per_s)},
           {"intermediate_target_mm", s.value("intermediate_target_mm", defaults.intermediate_target_mm)},
-          {"centerlines", s.value("centerlines", std::string("extracted (CGAL MCF)"))}};
+          {"centerlines", s.value("centerlines", std::string("extracted (CGAL MCF)"))},
+          {"wire", s.value("wire", std::string())}};
 }
 
 std::vector<EvaluationRow> select_rows(const std::vector<EvaluationRow>& table, const std::string& filter) {
@@ -429,10 +433,14 @@ std::string failure_modes(const nlohmann::json& summary, const std::set<std::str
 std::string evaluation_to_markdown(const nlohmann::json& e) {
   std::ostringstream md;
   // A run away from the task's defaults says so above its table: its rates are another experiment's.
-  const double push = run_task_settings(e)["push_mm_per_s"].get<double>();
+  const nlohmann::json settings = run_task_settings(e);
+  const double push = settings["push_mm_per_s"].get<double>();
   if (push != TaskConfig{}.push_mm_per_s)
     md << "Insertion speed " << push << " mm/s (the default, at which the policies were trained, is "
        << TaskConfig{}.push_mm_per_s << " mm/s).\n\n";
+  if (!settings["wire"].get<std::string>().empty())
+    md << "Wire parameters from " << settings["wire"].get<std::string>()
+       << " (the policies were trained with the default 0.014\" wire, engine/wire/coronary_014.json).\n\n";
   md << "| case | episodes | SAC (ours) | SAC, 95% interval | push-only | scripted omega | "
         "scripted omega, turning the other way | paper | SAC vs paper | SAC, reachable targets | "
         "SAC vs scripted (and the other way), same episodes | reached by a controller or rotation schedule |\n"

@@ -42,6 +42,7 @@ struct EvaluationOptions {
   int reachability_seeds = 2;
   double intermediate_target_mm = TaskConfig{}.intermediate_target_mm;  // trees (task_config.hpp)
   double push_mm_per_s = TaskConfig{}.push_mm_per_s;                    // insertion speed (task_config.hpp)
+  std::string wire_path;                                                // wire parameter JSON ("" = the 0.014" wire)
 };
 
 // A row's anatomies as the table runs them: centerlines extracted (or the truth when
@@ -54,7 +55,7 @@ std::vector<Anatomy> load_row_anatomies(const EvaluationRow& row, const Evaluati
 // reached, reached_by_a_controller, reached_only_by_a_schedule: [{anatomy, target, seed, schedule}],
 // reached_by_none: [{anatomy, target, seed}]} (each episode no column reached, re-run from the same start
 // with the rotation schedules; both only when reachability_seeds > 0)}], "settings": ...}. Rows whose
-// anatomy or policy is missing are kept with a "skipped" reason.
+// anatomy or policy is missing are kept with a "skipped" reason; a wire file that cannot be loaded throws.
 nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const EvaluationOptions& options);
 
 // How the table names a target ("coronary T3") and an episode ("coronary T3 seed 7") in its cells,
@@ -62,7 +63,7 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
 std::string target_key(const std::string& anatomy, int target);
 std::string episode_key(const nlohmann::json& episode);  // an entry of a summary's "results"
 // The settings besides the seed that a results.json's episodes depend on: {push_mm_per_s,
-// intermediate_target_mm, centerlines}. Runs that differ in one are different experiments (another
+// intermediate_target_mm, centerlines, wire} (wire: the parameter file's path as given, "" = the default). Runs that differ in one are different experiments (another
 // insertion speed, other centerlines), and a table joining them would mean neither. A setting a run did
 // not record is the default it ran with; a joined run has its first input's.
 nlohmann::json run_task_settings(const nlohmann::json& run);

@@ -114,6 +114,10 @@ TEST_CASE("merge: runs under different task settings are different experiments a
   nlohmann::json truth = run(10, {true}, {true}, 1);
   truth["settings"]["centerlines"] = "ground truth";
   CHECK_THROWS_WITH(gw::merge_evaluations({a, truth}, {"a.json", "truth.json"}), Catch::Contains("centerlines"));
+  nlohmann::json stiff = run(10, {true}, {true}, 1);
+  stiff["settings"]["wire"] = "stiff_tip.json";
+  CHECK_THROWS_WITH(gw::merge_evaluations({a, stiff}, {"a.json", "stiff.json"}),
+                    Catch::Contains("stiff.json ran with wire \"stiff_tip.json\""));
   nlohmann::json same = run(10, {true}, {true}, 1);  // the defaults written out join one that left them out
   same["settings"]["push_mm_per_s"] = 10.0;
   same["settings"]["intermediate_target_mm"] = 50.0;

@@ -476,6 +476,37 @@ TEST_CASE("evaluate --rows: comma-separated texts pick rows in the table's order
   CHECK_THROWS_WITH(gw::select_rows(table, ","), Catch::Contains("names no row"));
 }
 
+TEST_CASE("evaluate --wire: the rows run with the given wire, recorded in the settings; a bad file is refused",
+          "[runner]") {
+  gw::EvaluationOptions o;
+  o.index_path = std::string(GW_SOURCE_DIR) + "/anatomies/index.json";
+  o.controllers = {"push-only"};
+  o.extract_centerlines = false;
+  o.episode_scale = 0.02;  // 2 episodes
+  o.reachability_seeds = 0;
+  const gw::EvaluationRow row{"t1", {"t1_straight_y"}, 100, 0.95, false};
+  const nlohmann::json plain = gw::run_evaluation({row}, o);
+  CHECK(plain["settings"]["wire"] == "");
+  // A straighter tip (0.05 /mm instead of 0.2) pushed the same way from the same starts: other episodes.
+  nlohmann::json params = nlohmann::json::parse(std::ifstream(std::string(GW_SOURCE_DIR) + "/engine/wire/coronary_014.json"));
+  params["tip_curvature_per_mm"] = 0.05;
+  const std::string path = (std::filesystem::temp_directory_path() / "gw_evaluate_wire_test.json").string();
+  std::ofstream(path) << params.dump();
+  o.wire_path = path;
+  const nlohmann::json straighter = gw::run_evaluation({row}, o);
+  CHECK(straighter["settings"]["wire"] == path);
+  const nlohmann::json& a = plain["rows"][0]["results"]["push-only"]["results"];
+  const nlohmann::json& b = straighter["rows"][0]["results"]["push-only"]["results"];
+  REQUIRE(a.size() == 2);
+  REQUIRE(b.size() == 2);
+  CHECK(a != b);
+  CHECK(gw::evaluation_to_markdown(straighter).find("Wire parameters from " + path) != std::string::npos);
+  CHECK(gw::evaluation_to_markdown(plain).find("Wire parameters") == std::string::npos);
+  o.wire_path = path + ".missing";
+  CHECK_THROWS_WITH(gw::run_evaluation({row}, o), Catch::Contains(".missing"));
+  std::filesystem::remove(path);
+}
+
 TEST_CASE("the table's ceiling: episodes no controller reached are re-run from the same start with the rotation "
           "schedules",
           "[runner]") {

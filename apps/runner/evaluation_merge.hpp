@@ -12,9 +12,9 @@ namespace gw {
 // name and every column's episodes concatenated: counts, outcomes, per-episode results, the ceiling. A
 // target counts as unreached (reachability) only if no column reached it in any run. Throws
 // std::invalid_argument naming the row, column or episode when the runs do not fit together: a row or
-// column missing from one of them, different paper figures, different task settings (insertion speed,
-// intermediate target, centerlines: the runs are different experiments), or an episode (anatomy, target,
-// seed) in two runs (the same --seed twice would count every episode twice).
+// column missing from one of them, different paper figures, different settings (insertion speed,
+// intermediate target, centerlines, wire file: different experiments; run_task_settings), or an episode
+// (anatomy, target, seed) in two runs (the same --seed twice would count every episode twice).
 nlohmann::json merge_evaluations(const std::vector<nlohmann::json>& runs, const std::vector<std::string>& names);
 
 }  // namespace gw

@@ -104,8 +104,8 @@ def git_commit() -> str:
 
 def server_args(s: Settings) -> list[str]:
     return ["--omega-plane", s.omega_plane, "--reward-omega-centre", repr(s.reward_omega_centre),
-            "--reward-omega-slope", repr(s.reward_omega_slope), "--roll-disturbance", repr(s.roll_disturbance),
-            "--random-start", repr(s.random_start), "--push-speed", repr(s.push_speed)] + (["--omega-side"] if s.omega_side else [])
+            "--reward-omega-slope", repr(s.reward_omega_slope), "--push-speed", repr(s.push_speed),
+            "--roll-disturbance", repr(s.roll_disturbance), "--random-start", repr(s.random_start)] + (["--omega-side"] if s.omega_side else [])
 
 
 def make_env_fn(s: Settings, rank: int, eval_env: bool = False):

@@ -476,7 +476,7 @@ TEST_CASE("evaluate --rows: comma-separated texts pick rows in the table's order
   CHECK_THROWS_WITH(gw::select_rows(table, ","), Catch::Contains("names no row"));
 }
 
-TEST_CASE("evaluate --wire: the rows run with the given wire, recorded in the settings; a bad file is refused",
+TEST_CASE("evaluate --wire: the rows run with the given wire, recorded in the settings, and a bad file is refused",
           "[runner]") {
   gw::EvaluationOptions o;
   o.index_path = std::string(GW_SOURCE_DIR) + "/anatomies/index.json";

@@ -1,6 +1,10 @@
 #include "centerline/graph/centerline_graph.hpp"
 
+#include "centerline/graph/read_slicer_markups.hpp"
+#include "centerline/graph/read_vmtk_centerline.hpp"
+
 #include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -160,8 +164,15 @@ std::string centerline_to_json(const CenterlineGraph& g, int indent) {
 }
 
 CenterlineGraph centerline_from_json(const std::string& text, const std::string& origin) {
+  json j;
   try {
-    const json j = json::parse(text);
+    j = json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(origin + ": malformed centerline JSON (" + e.what() + ")");
+  }
+  if (j.is_object() && j.contains("markups") && !j.contains("schema"))  // a 3D Slicer .mrk.json
+    return centerline_from_slicer_markups(j, origin);
+  try {
     CenterlineGraph g;
     g.inlet = json_terminal(j.at("inlet"), "inlet");
     g.inlet.id = 0;
@@ -200,6 +211,12 @@ CenterlineGraph centerline_from_json(const std::string& text, const std::string&
 }
 
 CenterlineGraph read_centerline(const std::string& path) {
+  const auto ends_with = [&](const std::string& tail) {
+    if (path.size() < tail.size()) return false;
+    return std::equal(tail.rbegin(), tail.rend(), path.rbegin(),
+                      [](char a, char b) { return a == std::tolower(static_cast<unsigned char>(b)); });
+  };
+  if (ends_with(".vtp")) return read_vmtk_centerline(path);
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": cannot open centerline file");
   std::stringstream s;

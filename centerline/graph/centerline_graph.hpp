@@ -84,6 +84,11 @@ inline constexpr double kTargetLengthTieMm = 0.5;
 inline constexpr double kTargetCoordinateTieMm = 1.0;
 
 // JSON I/O. read throws std::runtime_error "<path>: <problem>" on a malformed file.
+// read_centerline is the one reader for every centerline file the project accepts:
+//   *.vtp                 VMTK centerlines (read_vmtk_centerline.hpp), any VTK XML encoding;
+//   JSON with "markups"   3D Slicer markups, *.mrk.json (read_slicer_markups.hpp; LPS -> RAS);
+//   other JSON            this schema.
+// centerline_from_json also takes a Slicer markups text.
 std::string centerline_to_json(const CenterlineGraph& graph, int indent = -1);
 CenterlineGraph centerline_from_json(const std::string& text, const std::string& origin = "<string>");
 CenterlineGraph read_centerline(const std::string& path);

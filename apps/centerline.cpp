@@ -31,14 +31,15 @@ Eigen::Vector3d parse_point(const std::string& text) {
 int main(int argc, char** argv) {
   CLI::App app{"Extract the centerline graph (inlet, numbered targets, branches, bifurcations) of a vessel surface"};
   std::string path, out, inlet_text;
-  double scale = 1.0;
+  double scale = 0.0;  // automatic (IntakeOptions)
   bool list = false;
   gw::CenterlineOptions options;
   gw::CacheOptions cache;
   bool no_cache = false, verbose = false;
   app.add_option("--anatomy", path, "vessel surface (.stl, .obj, .ply), millimetres after --scale")->required();
   app.add_option("--inlet", inlet_text, "x,y,z: the terminal nearest this point is the inlet (default: the widest)");
-  app.add_option("--scale", scale, "multiply coordinates first (1000 for a mesh in metres)");
+  app.add_option("--scale", scale, "multiply coordinates first (1000 for a mesh in metres); default: automatic, a surface under 2 units "
+                 "across is read as metres");
   app.add_option("--out", out, "write the JSON here instead of stdout");
   app.add_flag("--list", list, "print a table of the targets (id, position, path length, bifurcations)");
   app.add_option("--spacing", options.spacing, "point spacing along branches (mm)");
@@ -48,12 +49,14 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   cache.enabled = !no_cache;
   try {
-    if (!(scale > 0) || !std::isfinite(scale)) throw std::runtime_error("--scale must be a positive number");
+    if (app.count("--scale") && (!(scale > 0) || !std::isfinite(scale)))
+      throw std::runtime_error("--scale must be a positive number");
     if (!(options.spacing > 0)) throw std::runtime_error("--spacing must be a positive number");
     if (!inlet_text.empty()) options.inlet = parse_point(inlet_text);
     gw::CenterlineStats stats;
     bool hit = false;
     const gw::CenterlineGraph graph = gw::cached_extract_centerline(path, scale, options, cache, &stats, &hit);
+    for (const auto& r : stats.repairs) std::cerr << "repaired: " << path << ": " << r << "\n";
     for (const auto& w : stats.warnings) std::cerr << "warning: " << path << ": " << w << "\n";
     if (!options.inlet)
       if (const std::string w = gw::inlet_ambiguity(graph); !w.empty()) std::cerr << "warning: " << path << ": " << w << "\n";

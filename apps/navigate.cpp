@@ -2,7 +2,7 @@
 // shipped SAC policy (or a baseline controller).
 //   navigate --anatomy coronary.stl --target 3
 //   navigate --anatomy coronary.stl --target all --episodes 10 --seed 1 --json --out runs/coronary
-// Pipeline: load + validate mesh -> centerline (CGAL MCF, cached) -> plan path -> episodes in which
+// Pipeline: load + repair mesh (intake_surface: every repair on stderr and in --json) -> centerline (CGAL MCF, cached) -> plan path -> episodes in which
 // the policy turns the wire within 20 mm of each bifurcation and the wire is only pushed elsewhere.
 #include <CLI/CLI.hpp>
 #include <chrono>
@@ -18,16 +18,17 @@
 #include "apps/runner/navigation_anatomy.hpp"
 #include "apps/runner/navigation_outputs.hpp"
 #include "centerline/extract/target_table.hpp"
+#include "centerline/graph/nearest_target.hpp"
 #include "engine/task/navigation_task.hpp"
 #include "engine/wire/wire_params.hpp"
 
 namespace {
 
-Eigen::Vector3d parse_point(const std::string& text) {
+Eigen::Vector3d parse_point(const std::string& text, const std::string& flag = "--inlet") {
   Eigen::Vector3d p;
   char c1 = 0, c2 = 0;
   if (std::sscanf(text.c_str(), "%lf%c%lf%c%lf", &p.x(), &c1, &p.y(), &c2, &p.z()) != 5 || c1 != ',' || c2 != ',')
-    throw std::invalid_argument("--inlet expects x,y,z (three numbers separated by commas), got '" + text + "'");
+    throw std::invalid_argument(flag + " expects x,y,z (three numbers separated by commas), got '" + text + "'");
   return p;
 }
 
@@ -36,7 +37,7 @@ Eigen::Vector3d parse_point(const std::string& text) {
 int main(int argc, char** argv) {
   CLI::App app{"Navigate a guidewire to a numbered target of a vessel surface with the shipped policy"};
   std::string anatomy_path, target = "all", policy = gw::default_policy_path(), controller_kind = "policy";
-  std::string inlet_text, out_dir, wire_path;
+  std::string inlet_text, out_dir, wire_path, target_point_text;
   gw::NavigationAnatomyOptions load;
   int episodes = 1, threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   std::uint64_t seed = 0;
@@ -44,7 +45,10 @@ int main(int argc, char** argv) {
   double push_mm_per_s = gw::TaskConfig{}.push_mm_per_s;
   bool json = false, list = false, no_cache = false;
   app.add_option("--anatomy,anatomy", anatomy_path, "vessel surface (.stl, .obj, .ply), millimetres")->required();
-  app.add_option("--target", target, "target number, 'all' or 'random' (see --list)");
+  auto* target_option = app.add_option("--target", target, "target number, 'all' or 'random' (see --list)");
+  app.add_option("--target-point", target_point_text,
+                 "x,y,z: the target whose end is nearest this point (mm, RAS, e.g. a 3D Slicer fiducial)")
+      ->excludes(target_option);
   app.add_option("--episodes", episodes, "episodes per target ('random': in total)");
   app.add_option("--seed", seed, "episode k uses seed S+k: same seed, same episode");
   app.add_option("--policy", policy, "actor JSON (default: the shipped policy/trained/sac_actor.json)");
@@ -52,8 +56,9 @@ int main(int argc, char** argv) {
                  "policy | push-only | scripted-omega | scripted-omega-ccw (baselines) | a rotation schedule: " +
                      gw::rotation_schedule_list());
   app.add_option("--inlet", inlet_text, "x,y,z near the insertion point (default: the widest vessel end)");
-  app.add_option("--scale", load.scale, "multiply coordinates (1000 for metres -> mm)");
-  app.add_option("--centerline", load.centerline_path, "use this centerline JSON instead of extracting one");
+  app.add_option("--scale", load.scale, "multiply coordinates (1000 for metres -> mm); default: automatic, a surface "
+                                       "under 2 units across is read as metres");
+  app.add_option("--centerline", load.centerline_path, "use this centerline file (.json, VMTK .vtp, 3D Slicer .mrk.json) instead of extracting one");
   app.add_option("--wire", wire_path, "guidewire parameter JSON (default: 0.014\" coronary wire)");
   app.add_option("--intermediate-target", intermediate_target_mm,
                  "trees: lambda is measured to a point this many mm past each bifurcation (0 = at the hand-over, "
@@ -68,11 +73,27 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   try {
+    if (app.count("--scale") && (!(load.scale > 0) || !std::isfinite(load.scale)))
+      throw std::invalid_argument("--scale must be a positive number");
     const auto start = std::chrono::steady_clock::now();
     if (!inlet_text.empty()) load.inlet = parse_point(inlet_text);
     load.use_cache = !no_cache;
     const gw::NavigationAnatomy nav = gw::load_navigation_anatomy(anatomy_path, load);
+    for (const std::string& r : nav.repairs) std::cerr << "repaired: " << anatomy_path << ": " << r << "\n";
+    for (const std::string& w : nav.mesh_warnings) std::cerr << "warning: " << anatomy_path << ": " << w << "\n";
     if (!nav.inlet_warning.empty()) std::cerr << "warning: " << anatomy_path << ": " << nav.inlet_warning << "\n";
+    // The default wire is a 0.014" coronary wire made for vessels of about 0.8-2 mm radius; in an
+    // aorta (radius 10-15 mm) its tip cannot span the lumen to aim at a branch.
+    const double inlet_radius = nav.anatomy.graph.inlet.radius;
+    if (wire_path.empty() && inlet_radius > 4.0)
+      std::cerr << "note: " << anatomy_path << ": the inlet is " << inlet_radius
+                << " mm in radius, far above the default 0.014\" coronary wire's range (about 0.8-2 mm); for an aorta "
+                   "try --wire "
+                << gw::shipped_path("engine/wire/aortic_035_angled.json") << " (0.035\" angled-tip wire)\n";
+    if (!target_point_text.empty()) {
+      target = std::to_string(gw::nearest_target(nav.anatomy.graph, parse_point(target_point_text, "--target-point")));
+      std::cerr << "target: " << anatomy_path << ": --target-point is nearest target " << target << "\n";
+    }
     if (list) {
       std::cout << gw::format_target_table(nav.anatomy.graph);
       return 0;
@@ -114,6 +135,7 @@ int main(int argc, char** argv) {
                              {"seconds", nav.centerline_seconds},
                              {"targets", nav.anatomy.graph.targets.size()},
                              {"bifurcations", nav.anatomy.graph.bifurcations.size()}};
+    if (!nav.intake_report.empty()) summary["intake"] = nlohmann::json::parse(nav.intake_report);
     summary["intermediate_target_mm"] = intermediate_target_mm;
     summary["push_mm_per_s"] = push_mm_per_s;
     summary["wall_time_s"] = wall;

@@ -100,8 +100,10 @@ std::unique_ptr<Controller> make_controller(const std::string& kind, const std::
 
 std::string default_policy_path() {
   if (const char* env = std::getenv("GW_POLICY"); env && *env) return env;
-  return std::string(GW_SOURCE_DIR) + "/policy/trained/sac_actor.json";
+  return shipped_path("policy/trained/sac_actor.json");
 }
+
+std::string shipped_path(const std::string& relative) { return std::string(GW_SOURCE_DIR) + "/" + relative; }
 
 std::string base_policy_path(const std::string& policy_path) {
   return std::filesystem::path(policy_path).replace_filename("sac_actor_base.json").string();

@@ -48,6 +48,9 @@ std::unique_ptr<Controller> make_controller(const std::string& kind, const std::
 // The shipped default actor: $GW_POLICY if set, else policy/trained/sac_actor.json of the source tree.
 std::string default_policy_path();
 
+// A file shipped in the repository, e.g. "engine/wire/aortic_035_angled.json", as an absolute path.
+std::string shipped_path(const std::string& relative);
+
 // The actor `evaluate` runs on the sensitivity rows, trained on sensitivity/base only (the paper's
 // section 3.1): sac_actor_base.json beside `policy_path`.
 std::string base_policy_path(const std::string& policy_path);

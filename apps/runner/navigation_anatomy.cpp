@@ -6,7 +6,7 @@
 
 #include "centerline/extract/centerline_cache.hpp"
 #include "centerline/graph/inlet_ambiguity.hpp"
-#include "engine/mesh/load_mesh.hpp"
+#include "centerline/extract/intake_surface.hpp"
 #include "engine/scene/vessel_scene.hpp"
 
 namespace gw {
@@ -25,18 +25,39 @@ std::string truth_sidecar(const std::string& mesh_path) {
   return std::filesystem::is_regular_file(p, ec) ? p.string() : std::string();
 }
 
+void scale_centerline(CenterlineGraph& g, double s) {
+  for (CenterlineBranch& b : g.branches) {
+    for (Eigen::Vector3d& p : b.points) p *= s;
+    for (double& r : b.radii) r *= s;
+  }
+  for (Bifurcation& b : g.bifurcations) b.position *= s;
+  for (auto& t : g.targets) t.position *= s, t.radius *= s;
+  g.inlet.position *= s;
+  g.inlet.radius *= s;
+}
+
 }  // namespace
 
 NavigationAnatomy load_navigation_anatomy(const std::string& mesh_path, const NavigationAnatomyOptions& options) {
   NavigationAnatomy out;
-  LoadMeshOptions load;
-  load.scale = options.scale;
-  out.mesh = load_valid_mesh(mesh_path, load);
+  IntakeOptions intake;
+  intake.scale = options.scale;
+  const IntakeSurface surface = intake_surface(mesh_path, intake);
+  out.mesh = surface.wall;
+  out.repairs = surface.repairs;
+  out.mesh_warnings = surface.warnings;
+  out.intake_report = surface.repaired() || !surface.warnings.empty() ? intake_report_json(surface) : std::string();
 
   const auto start = std::chrono::steady_clock::now();
   CenterlineGraph graph;
   if (!options.centerline_path.empty()) {
     graph = read_centerline(options.centerline_path);
+    // A VMTK .vtp is in the mesh file's units; scale it with the mesh (the project's JSON and
+    // Slicer's markups state millimetres).
+    if (surface.scale != 1.0 && std::filesystem::path(options.centerline_path).extension() == ".vtp") {
+      scale_centerline(graph, surface.scale);
+      out.repairs.push_back(options.centerline_path + ": scaled by " + std::to_string(surface.scale) + " with the mesh");
+    }
     out.centerline_source = options.centerline_path;
     out.inlet_source = options.centerline_path;
   } else {
@@ -55,7 +76,7 @@ NavigationAnatomy load_navigation_anatomy(const std::string& mesh_path, const Na
     CacheOptions cache;
     cache.enabled = options.use_cache;
     bool hit = false;
-    graph = cached_extract_centerline(mesh_path, options.scale, extract, cache, nullptr, &hit);
+    graph = cached_extract_centerline(surface, extract, cache, nullptr, &hit);
     out.centerline_from_cache = hit;
     out.centerline_source = hit ? "cache" : "extracted";
     if (out.inlet_source == "widest end") out.inlet_warning = inlet_ambiguity(graph);

@@ -1,9 +1,10 @@
 #pragma once
-// From a vessel surface file to what the navigation task needs: the validated mesh, its wall
+// From a vessel surface file to what the navigation task needs: the repaired mesh (intake_surface), its wall
 // (VesselScene) and its centerline graph — extracted with CGAL MCF through the on-disk cache, or
 // read from a given centerline JSON (e.g. an anatomy's ground truth).
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -13,14 +14,17 @@
 namespace gw {
 
 struct NavigationAnatomyOptions {
-  double scale = 1.0;                     // mesh units -> mm
+  double scale = 0.0;                     // mesh units -> mm; 0: automatic (metres detected, IntakeOptions)
   std::optional<Eigen::Vector3d> inlet;   // picks the inlet terminal (else the sidecar's, else the widest)
   std::string centerline_path;            // non-empty: use this graph instead of extracting
   bool use_cache = true;
 };
 
 struct NavigationAnatomy {
-  TriangleMesh mesh;
+  TriangleMesh mesh;                      // the wall: the file's surface, repaired when it had to be
+  std::vector<std::string> repairs;       // what the intake repaired (intake_surface.hpp), one line each
+  std::vector<std::string> mesh_warnings; // suspicions it left alone (e.g. maybe centimetres)
+  std::string intake_report;              // intake_report_json when anything was repaired or suspected, else ""
   Anatomy anatomy;
   bool centerline_from_cache = false;
   double centerline_seconds = 0.0;        // extraction (or cache read) time

@@ -5,11 +5,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
-#include "engine/mesh/load_mesh.hpp"
-#include "engine/mesh/validate_mesh.hpp"
+#include "centerline/extract/intake_surface.hpp"
 
 namespace gw {
 namespace fs = std::filesystem;
@@ -48,8 +49,12 @@ std::string centerline_cache_key(const std::string& mesh_path, double scale, con
   return hex;
 }
 
-CenterlineGraph cached_extract_centerline(const std::string& path, double scale, const CenterlineOptions& options,
-                                          const CacheOptions& cache, CenterlineStats* stats, bool* cache_hit) {
+namespace {
+
+// The cache around one extraction; `surface` gives the intake result only on a miss.
+CenterlineGraph cached(const std::string& path, double scale, const CenterlineOptions& options,
+                       const CacheOptions& cache, CenterlineStats* stats, bool* cache_hit,
+                       const std::function<const IntakeSurface&()>& surface) {
   if (cache_hit) *cache_hit = false;
   std::string entry;
   if (cache.enabled) {
@@ -68,15 +73,16 @@ CenterlineGraph cached_extract_centerline(const std::string& path, double scale,
       }
     }
   }
-  LoadMeshOptions load;
-  load.scale = scale;
-  MeshReport report;
-  const TriangleMesh mesh = load_valid_mesh(path, load, &report);
+  const IntakeSurface& s = surface();
   CenterlineGraph g;
   try {
-    g = extract_centerline(mesh, options, stats);
-    // Unit suspicions and the like come from the mesh check; repairs from extraction.
-    if (stats) stats->warnings.insert(stats->warnings.begin(), report.warnings.begin(), report.warnings.end());
+    g = extract_centerline(s.closed, options, stats);
+    // The intake's repairs include close_surface's and the units; its warnings are suspicions.
+    if (stats) {
+      stats->input_faces = s.input.faces;
+      stats->repairs = s.repairs;
+      stats->warnings.insert(stats->warnings.begin(), s.warnings.begin(), s.warnings.end());
+    }
   } catch (const std::invalid_argument&) {
     throw;
   } catch (const std::runtime_error& e) {
@@ -92,6 +98,25 @@ CenterlineGraph cached_extract_centerline(const std::string& path, double scale,
     }
   }
   return g;
+}
+
+}  // namespace
+
+CenterlineGraph cached_extract_centerline(const std::string& path, double scale, const CenterlineOptions& options,
+                                          const CacheOptions& cache, CenterlineStats* stats, bool* cache_hit) {
+  std::optional<IntakeSurface> surface;
+  IntakeOptions intake;
+  intake.scale = scale;
+  return cached(path, scale, options, cache, stats, cache_hit, [&]() -> const IntakeSurface& {
+    if (!surface) surface = intake_surface(path, intake);
+    return *surface;
+  });
+}
+
+CenterlineGraph cached_extract_centerline(const IntakeSurface& surface, const CenterlineOptions& options,
+                                          const CacheOptions& cache, CenterlineStats* stats, bool* cache_hit) {
+  return cached(surface.path, surface.requested_scale, options, cache, stats, cache_hit,
+                [&]() -> const IntakeSurface& { return surface; });
 }
 
 }  // namespace gw

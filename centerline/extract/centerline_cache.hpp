@@ -11,11 +11,12 @@
 #include <string>
 
 #include "centerline/extract/extract_centerline.hpp"
+#include "centerline/extract/intake_surface.hpp"
 
 namespace gw {
 
 // Bumped whenever the extraction changes its output.
-inline constexpr const char* kCenterlinePipelineVersion = "mcf-recentre-7";
+inline constexpr const char* kCenterlinePipelineVersion = "mcf-recentre-8-intake";
 
 struct CacheOptions {
   bool enabled = true;
@@ -28,11 +29,18 @@ std::string default_centerline_cache_dir();
 // 16 hex digits (see above). Throws std::runtime_error "<path>: cannot read mesh file".
 std::string centerline_cache_key(const std::string& mesh_path, double scale, const CenterlineOptions& options);
 
-// load_valid_mesh(path, scale) + extract_centerline, through the cache. A corrupt entry
+// intake_surface(path, scale) + extract_centerline, through the cache (scale 0: automatic,
+// see IntakeOptions; the key holds the scale as given, so "automatic" is its own entry). A corrupt entry
 // is recomputed; a cache folder that cannot be written is ignored (the result is still
 // returned). `cache_hit` tells whether the result came from the cache; `stats` is only
 // filled on a miss. Errors: MeshError/runtime_error "<path>: <problem>".
 CenterlineGraph cached_extract_centerline(const std::string& mesh_path, double scale, const CenterlineOptions& options,
+                                          const CacheOptions& cache = {}, CenterlineStats* stats = nullptr,
+                                          bool* cache_hit = nullptr);
+
+// The same for a surface already taken in (navigate needs it for the wall too): the key is its
+// file and requested scale.
+CenterlineGraph cached_extract_centerline(const IntakeSurface& surface, const CenterlineOptions& options,
                                           const CacheOptions& cache = {}, CenterlineStats* stats = nullptr,
                                           bool* cache_hit = nullptr);
 

@@ -40,22 +40,28 @@ double end_radius(const RefinedBranch& b, bool at_start) {
 }  // namespace
 
 CenterlineGraph extract_centerline(const TriangleMesh& mesh, const CenterlineOptions& opt, CenterlineStats* stats_out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const ClosedSurface closed = close_surface(mesh);
+  CenterlineStats stats;
+  CenterlineGraph g = extract_centerline(closed, opt, &stats);
+  stats.input_faces = mesh.F.rows();
+  stats.seconds_prepare = seconds_since(t0) - stats.seconds_skeleton - stats.seconds_graph;  // closing included
+  if (stats_out) *stats_out = stats;
+  return g;
+}
+
+CenterlineGraph extract_centerline(const ClosedSurface& closed, const CenterlineOptions& opt, CenterlineStats* stats_out) {
   if (!(opt.spacing > 0) || !(opt.edges_per_radius > 0))
     throw std::invalid_argument("centerline options: spacing and edges_per_radius must be positive");
   CenterlineStats stats;
-  stats.input_faces = mesh.F.rows();
+  stats.input_faces = closed.mesh.F.rows();
   auto t0 = std::chrono::steady_clock::now();
 
   // 1-2. A closed surface, remeshed to a size tied to the vessel radius.
-  const ClosedSurface closed = close_surface(mesh);
   stats.capped_holes = static_cast<int>(closed.caps.size());
   stats.dropped_components = closed.dropped_components;
   stats.mean_radius = closed.mean_radius();
-  if (closed.dropped_components > 0)
-    stats.warnings.push_back("dropped " + std::to_string(closed.dropped_components) +
-                             " disconnected piece(s); kept the largest surface");
-  if (!closed.caps.empty())
-    stats.warnings.push_back("capped " + std::to_string(closed.caps.size()) + " open end(s)");
+  stats.repairs = closed.repairs;
   // A vessel a few hundredths of a millimetre wide is a mesh in metres (or cm): every
   // tolerance below is in millimetres, so refuse rather than return nonsense.
   if (stats.mean_radius < 0.05) {

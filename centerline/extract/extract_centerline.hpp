@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "centerline/extract/prepare_surface.hpp"
 #include "centerline/graph/centerline_graph.hpp"
 #include "engine/mesh/triangle_mesh.hpp"
 
@@ -26,12 +27,13 @@ struct CenterlineStats {
   int capped_holes = 0, dropped_components = 0;
   double mean_radius = 0.0;  // 2 * volume / area of the closed surface (mm)
   double seconds_prepare = 0, seconds_skeleton = 0, seconds_graph = 0;
-  std::vector<std::string> warnings;
+  std::vector<std::string> repairs;   // what the intake / close_surface changed, one line each
+  std::vector<std::string> warnings;  // suspicions that changed nothing
 };
 
 // Extracts the centerline graph of `mesh` (mm):
-//  1. close_surface: repair, keep the largest component (warning), cap holes (their
-//     centres are terminal candidates), orient outwards;
+//  1. close_surface: repair, drop islands, cap holes (their centres are terminal
+//     candidates), alpha-wrap what cheap repairs cannot close, orient outwards;
 //  2. remesh_surface to edges of mean radius / edges_per_radius, so MCF cost depends on
 //     the vessel size rather than on the input tessellation;
 //  3. mcf_skeleton (its node positions; correspondence centroids scatter when few
@@ -45,6 +47,11 @@ struct CenterlineStats {
 // Throws std::runtime_error with a clear message when the surface cannot be repaired
 // into a closed 2-manifold or yields no usable skeleton.
 CenterlineGraph extract_centerline(const TriangleMesh& mesh, const CenterlineOptions& options = {},
+                                   CenterlineStats* stats = nullptr);
+
+// Steps 2-7 on a surface close_surface already made (intake_surface.hpp): its caps are the
+// terminal candidates, its repairs are reported as warnings.
+CenterlineGraph extract_centerline(const ClosedSurface& closed, const CenterlineOptions& options = {},
                                    CenterlineStats* stats = nullptr);
 
 }  // namespace gw

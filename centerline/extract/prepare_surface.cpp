@@ -1,5 +1,9 @@
 #include "centerline/extract/prepare_surface.hpp"
 
+#include "centerline/extract/alpha_wrap_surface.hpp"
+#include "centerline/extract/vessel_scale.hpp"
+
+#include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
@@ -19,6 +23,9 @@
 #include <array>
 #include <iterator>
 #include <set>
+#include <sstream>
+#include <cmath>
+#include <algorithm>
 #include <stdexcept>
 
 namespace gw {
@@ -28,6 +35,7 @@ using K = CGAL::Simple_cartesian<double>;
 using Point = K::Point_3;
 using SMesh = CGAL::Surface_mesh<Point>;
 namespace PMP = CGAL::Polygon_mesh_processing;
+constexpr double kPi = 3.14159265358979323846;
 
 Eigen::Vector3d to_eigen(const Point& p) { return {p.x(), p.y(), p.z()}; }
 
@@ -50,11 +58,9 @@ bool build_directly(const TriangleMesh& mesh, SMesh& sm) {
   return true;
 }
 
-SMesh to_surface_mesh(const TriangleMesh& mesh) {
-  {
-    SMesh sm;
-    if (build_directly(mesh, sm)) return sm;
-  }
+// The faces as a polygon soup, repaired (duplicate/degenerate faces), oriented consistently and
+// with non-manifold joins split by duplicating their vertices. Counts what it changed.
+SMesh soup_to_surface_mesh(const TriangleMesh& mesh, long* split_vertices = nullptr) {
   std::vector<Point> points;
   std::vector<std::array<std::size_t, 3>> faces;
   points.reserve(static_cast<size_t>(mesh.V.rows()));
@@ -71,10 +77,18 @@ SMesh to_surface_mesh(const TriangleMesh& mesh) {
   // Soup repair first: STL exports carry duplicate and degenerate faces; orienting the
   // soup duplicates vertices shared by several sheets so the result is a 2-manifold.
   PMP::repair_polygon_soup(points, faces);
+  const std::size_t before = points.size();
   PMP::orient_polygon_soup(points, faces);
+  if (split_vertices) *split_vertices = static_cast<long>(points.size() - before);
   SMesh sm;
   PMP::polygon_soup_to_polygon_mesh(points, faces, sm);
   return sm;
+}
+
+SMesh to_surface_mesh(const TriangleMesh& mesh) {
+  SMesh sm;
+  if (build_directly(mesh, sm)) return sm;
+  return soup_to_surface_mesh(mesh);
 }
 
 TriangleMesh to_triangle_mesh(const SMesh& sm) {
@@ -98,58 +112,187 @@ TriangleMesh to_triangle_mesh(const SMesh& sm) {
 
 }  // namespace
 
-ClosedSurface close_surface(const TriangleMesh& mesh) {
-  if (mesh.F.rows() == 0) throw std::runtime_error("the surface has no faces");
-  if (!mesh.V.allFinite()) throw std::runtime_error("the surface has non-finite vertex coordinates");
-  SMesh sm = to_surface_mesh(mesh);
-  ClosedSurface out;
-  out.dropped_components = static_cast<int>(PMP::keep_largest_connected_components(sm, 1));
-  sm.collect_garbage();
-  if (sm.number_of_faces() < 4) throw std::runtime_error("the surface has fewer than 4 usable faces");
+namespace {
 
-  // Cap every boundary loop; the loop's centroid and size become a terminal candidate.
+double face_area(const SMesh& sm, SMesh::Face_index f) {
+  return std::sqrt(CGAL::to_double(CGAL::squared_area(sm.point(sm.source(sm.halfedge(f))),
+                                                      sm.point(sm.target(sm.halfedge(f))),
+                                                      sm.point(sm.target(sm.next(sm.halfedge(f)))))));
+}
+
+std::string fixed(double v, int digits = 2) {
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(digits);
+  s << v;
+  return s.str();
+}
+
+// Stage "islands": drops pieces below the area share; returns how many pieces remain.
+int drop_islands(SMesh& sm, const SurfaceRepairOptions& o, ClosedSurface& out) {
+  auto component = sm.add_property_map<SMesh::Face_index, std::size_t>("f:gw_component", 0).first;
+  const std::size_t n = PMP::connected_components(sm, component);
+  std::vector<double> area(n, 0.0);
+  std::vector<long> faces(n, 0);
+  for (auto f : sm.faces()) area[component[f]] += face_area(sm, f), ++faces[component[f]];
+  const double largest = *std::max_element(area.begin(), area.end());
+  std::vector<bool> keep(n, false);
+  int kept = 0;
+  for (std::size_t c = 0; c < n; ++c) {
+    keep[c] = area[c] >= o.island_area_fraction * largest && area[c] > 0;
+    if (keep[c]) ++kept;
+    else {
+      ++out.dropped_components;
+      out.dropped_faces += faces[c];
+      out.largest_dropped_area = std::max(out.largest_dropped_area, area[c]);
+    }
+  }
+  if (out.dropped_components > 0) {
+    std::vector<SMesh::Face_index> drop;
+    for (auto f : sm.faces())
+      if (!keep[component[f]]) drop.push_back(f);
+    for (auto f : drop) CGAL::Euler::remove_face(sm.halfedge(f), sm);
+    sm.collect_garbage();
+    out.repairs.push_back("dropped " + std::to_string(out.dropped_components) + " island(s) of " +
+                          std::to_string(out.dropped_faces) + " faces in all (largest " +
+                          fixed(out.largest_dropped_area) + " mm^2, the vessel " + fixed(largest, 0) + " mm^2)");
+  }
+  sm.remove_property_map(component);
+  return kept;
+}
+
+// Stage "cap": closes every boundary loop; round loops are recorded as open vessel ends.
+void cap_holes(SMesh& sm, ClosedSurface& out) {
   std::vector<SMesh::Halfedge_index> holes;
-  {
-    std::set<SMesh::Halfedge_index> seen;
-    for (auto h : sm.halfedges()) {
-      if (!sm.is_border(h) || seen.count(h)) continue;
-      SurfaceCap cap;
-      std::vector<Eigen::Vector3d> loop;
-      auto g = h;
-      do {
-        seen.insert(g);
-        loop.push_back(to_eigen(sm.point(sm.target(g))));
-        g = sm.next(g);
-      } while (g != h);
-      for (const auto& p : loop) cap.centre += p;
-      cap.centre /= double(loop.size());
-      Eigen::Vector3d area_vector = Eigen::Vector3d::Zero();
-      for (size_t i = 0; i < loop.size(); ++i) {
-        cap.radius += (loop[i] - cap.centre).norm();
-        area_vector += (loop[i] - cap.centre).cross(loop[(i + 1) % loop.size()] - cap.centre);
-      }
-      cap.radius /= double(loop.size());
-      if (area_vector.norm() > 0) cap.normal = area_vector.normalized();
-      holes.push_back(h);
+  std::set<SMesh::Halfedge_index> seen;
+  for (auto h : sm.halfedges()) {
+    if (!sm.is_border(h) || seen.count(h)) continue;
+    std::vector<Eigen::Vector3d> loop;
+    auto g = h;
+    do {
+      seen.insert(g);
+      loop.push_back(to_eigen(sm.point(sm.target(g))));
+      g = sm.next(g);
+    } while (g != h);
+    holes.push_back(h);
+    SurfaceCap cap;
+    for (const auto& p : loop) cap.centre += p;
+    cap.centre /= double(loop.size());
+    Eigen::Vector3d area_vector = Eigen::Vector3d::Zero();
+    for (size_t i = 0; i < loop.size(); ++i) {
+      cap.radius += (loop[i] - cap.centre).norm();
+      area_vector += 0.5 * (loop[i] - cap.centre).cross(loop[(i + 1) % loop.size()] - cap.centre);
+    }
+    cap.radius /= double(loop.size());
+    // An open vessel end is a roundish planar loop; a slit left by a split non-manifold join or a
+    // crack encloses almost no area and is no terminal.
+    if (loop.size() >= 5 && cap.radius > 0 && area_vector.norm() > 0.5 * kPi * cap.radius * cap.radius) {
+      cap.normal = area_vector.normalized();
       out.caps.push_back(cap);
     }
   }
   for (auto h : holes) {
     std::vector<SMesh::Face_index> patch;
     PMP::triangulate_hole(sm, h, std::back_inserter(patch));
+    if (patch.empty() && sm.is_border(h)) {
+      // No triangulation without a non-manifold edge (the loop runs along a split join): a fan
+      // around a new centroid vertex always closes it topologically; the wrap then fixes the shape.
+      CGAL::Euler::fill_hole(h, sm);
+      Eigen::Vector3d c = Eigen::Vector3d::Zero();
+      int k = 0;
+      for (auto v : CGAL::vertices_around_face(h, sm)) c += to_eigen(sm.point(v)), ++k;
+      c /= std::max(1, k);
+      const auto centre = CGAL::Euler::add_center_vertex(h, sm);
+      sm.point(sm.target(centre)) = Point(c.x(), c.y(), c.z());
+      ++out.fan_caps;
+    }
   }
+  if (!holes.empty())
+    out.repairs.push_back("capped " + std::to_string(holes.size()) + " open boundary loop(s), " +
+                          std::to_string(out.caps.size()) + " of them round vessel ends" +
+                          (out.fan_caps ? ", " + std::to_string(out.fan_caps) + " only with a fan" : std::string()));
+}
+
+// Every piece of a closed mesh with outward normals (per piece: pieces may nest or overlap).
+void orient_pieces_outward(SMesh& sm) {
+  auto component = sm.add_property_map<SMesh::Face_index, std::size_t>("f:gw_piece", 0).first;
+  const std::size_t n = PMP::connected_components(sm, component);
+  std::vector<double> volume(n, 0.0);
+  for (auto f : sm.faces()) {
+    auto h = sm.halfedge(f);
+    const Eigen::Vector3d a = to_eigen(sm.point(sm.source(h))), b = to_eigen(sm.point(sm.target(h))),
+                          c = to_eigen(sm.point(sm.target(sm.next(h))));
+    volume[component[f]] += a.dot(b.cross(c)) / 6.0;
+  }
+  for (std::size_t c = 0; c < n; ++c) {
+    if (volume[c] >= 0) continue;
+    std::vector<SMesh::Face_index> piece;
+    for (auto f : sm.faces())
+      if (component[f] == c) piece.push_back(f);
+    PMP::reverse_face_orientations(piece, sm);
+  }
+  sm.remove_property_map(component);
+}
+
+}  // namespace
+
+ClosedSurface close_surface(const TriangleMesh& mesh, const SurfaceRepairOptions& options) {
+  if (mesh.F.rows() == 0) throw std::runtime_error("the surface has no faces");
+  if (!mesh.V.allFinite()) throw std::runtime_error("the surface has non-finite vertex coordinates");
+  ClosedSurface out;
+
+  // build
+  SMesh sm;
+  if (!build_directly(mesh, sm)) {
+    sm = soup_to_surface_mesh(mesh, &out.split_vertices);
+    out.soup_repaired = true;
+    out.repairs.push_back("faces did not form one consistently oriented 2-manifold: soup repaired and reoriented" +
+                          (out.split_vertices ? ", " + std::to_string(out.split_vertices) +
+                                                    " vertices duplicated to split non-manifold joins"
+                                              : std::string()));
+  }
+  if (sm.number_of_faces() == 0) throw std::runtime_error("the surface has no usable faces");
+  // islands
+  out.kept_pieces = drop_islands(sm, options, out);
+  if (sm.number_of_faces() < 4) throw std::runtime_error("the surface has fewer than 4 usable faces");
+  // cap
+  cap_holes(sm, out);
   if (!CGAL::is_closed(sm) || !CGAL::is_triangle_mesh(sm))
     throw std::runtime_error("the surface cannot be closed into a triangle 2-manifold (holes that cannot be capped)");
-  // Border halfedges of an outward-oriented surface run counter-clockwise seen from
-  // outside the hole, so the loop's area vector points out of the vessel; flip the
-  // cap normals with the surface when it had to be reversed.
+  // wrap
+  const bool wrap = options.force_wrap || out.kept_pieces > 1 || out.fan_caps > 0;
+  if (wrap) {
+    const std::string why = options.force_wrap      ? "asked for"
+                            : out.kept_pieces > 1 ? std::to_string(out.kept_pieces) + " separate vessel-sized pieces"
+                                                  : "holes only a fan could close";
+    if (!options.allow_wrap)
+      throw std::runtime_error("the surface needs alpha wrapping (" + why + ") and wrapping is off");
+    orient_pieces_outward(sm);
+    const TriangleMesh soup = to_triangle_mesh(sm);
+    const VesselScale scale = estimate_vessel_scale(soup);
+    out.wrap_scale_radius = scale.small_radius;
+    out.wrap_alpha = options.wrap_alpha_factor * scale.small_radius;
+    out.wrap_offset = options.wrap_offset_factor * scale.small_radius;
+    out.mesh = alpha_wrap_surface(soup, out.wrap_alpha, out.wrap_offset);
+    out.wrapped = true;
+    out.repairs.push_back("alpha-wrapped (" + why + "): alpha " + fixed(out.wrap_alpha, 3) + ", offset " +
+                          fixed(out.wrap_offset, 3) + " (thin vessels' radius " + fixed(scale.small_radius, 3) + ")");
+    sm = to_surface_mesh(out.mesh);
+  }
+  // orient. Border halfedges of an outward-oriented surface run counter-clockwise seen from
+  // outside the hole, so the loop's area vector points out of the vessel; flip the cap normals
+  // with the surface when it had to be reversed.
   if (PMP::volume(sm) < 0) {
     PMP::reverse_face_orientations(sm);
     for (auto& cap : out.caps) cap.normal = -cap.normal;
+    if (!out.wrapped) {
+      out.flipped = true;
+      out.repairs.push_back("normals pointed into the lumen: reversed");
+    }
   }
   out.volume = PMP::volume(sm);
   out.area = PMP::area(sm);
-  if (!(out.volume > 0) || !(out.area > 0)) throw std::runtime_error("the surface encloses no volume");
+  if (!(out.volume > 0) || !(out.area > 0)) throw std::runtime_error("the surface encloses no volume (a single open sheet?)");
   out.mesh = to_triangle_mesh(sm);
   return out;
 }

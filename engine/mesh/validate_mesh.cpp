@@ -118,7 +118,7 @@ MeshReport validate_mesh(const TriangleMesh& mesh) {
   if (r.non_manifold_edges > 0)
     r.warnings.push_back(std::to_string(r.non_manifold_edges) + " non-manifold edges (shared by more than two faces)");
   if (r.components > 1)
-    r.warnings.push_back(std::to_string(r.components) + " connected components; all but the largest will be dropped");
+    r.warnings.push_back(std::to_string(r.components) + " connected components; pieces under 2% of the largest one's area are dropped as islands, larger ones wrapped into one surface");
   if (r.degenerate_faces > 0)
     r.warnings.push_back(std::to_string(r.degenerate_faces) + " degenerate faces (zero area or repeated vertex)");
   if (any_finite && r.max_extent < 1.0)

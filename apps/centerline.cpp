@@ -66,6 +66,11 @@ int main(int argc, char** argv) {
         std::cerr << "centerline: " << path << ": " << stats.input_faces << " faces -> " << stats.skeleton_faces
                   << " for MCF; prepare " << stats.seconds_prepare << " s, skeleton " << stats.seconds_skeleton
                   << " s, graph " << stats.seconds_graph << " s\n";
+      if (!hit) {
+        std::cerr << "intake: " << path << ":";
+        for (const auto& [stage, seconds] : stats.intake_seconds) std::cerr << " " << stage << " " << seconds << " s";
+        std::cerr << "\n";
+      }
     }
     if (!out.empty()) gw::write_centerline(graph, out);
     if (list) std::cout << gw::format_target_table(graph);

@@ -81,6 +81,7 @@ CenterlineGraph cached(const std::string& path, double scale, const CenterlineOp
     if (stats) {
       stats->input_faces = s.input.faces;
       stats->repairs = s.repairs;
+      stats->intake_seconds = s.stage_seconds;
       stats->warnings.insert(stats->warnings.begin(), s.warnings.begin(), s.warnings.end());
     }
   } catch (const std::invalid_argument&) {

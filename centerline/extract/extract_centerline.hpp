@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "centerline/extract/prepare_surface.hpp"
@@ -27,6 +28,7 @@ struct CenterlineStats {
   int capped_holes = 0, dropped_components = 0;
   double mean_radius = 0.0;  // 2 * volume / area of the closed surface (mm)
   double seconds_prepare = 0, seconds_skeleton = 0, seconds_graph = 0;
+  std::vector<std::pair<std::string, double>> intake_seconds;  // per intake stage, when it ran (cache miss)
   std::vector<std::string> repairs;   // what the intake / close_surface changed, one line each
   std::vector<std::string> warnings;  // suspicions that changed nothing
 };

@@ -1,5 +1,6 @@
 #include "centerline/extract/intake_surface.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -16,7 +17,9 @@ IntakeSurface intake_surface(const std::string& path, const IntakeOptions& optio
   IntakeSurface out;
   out.path = path;
   out.requested_scale = options.scale;
+  const auto t0 = std::chrono::steady_clock::now();
   TriangleMesh mesh = load_mesh(path);  // throws MeshError for unreadable files
+  out.stage_seconds.emplace_back("load", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
 
   // frame: 3D Slicer writes models in LPS and says so; the project (and Slicer's curves read by
   // read_centerline) work in RAS
@@ -52,6 +55,7 @@ IntakeSurface intake_surface(const std::string& path, const IntakeOptions& optio
     throw MeshError(path + ": " + e.what());
   }
   out.repairs.insert(out.repairs.end(), out.closed.repairs.begin(), out.closed.repairs.end());
+  out.stage_seconds.insert(out.stage_seconds.end(), out.closed.stage_seconds.begin(), out.closed.stage_seconds.end());
   out.wall = out.closed.repairs.empty() ? std::move(mesh) : out.closed.mesh;
   return out;
 }
@@ -77,6 +81,7 @@ std::string intake_report_json(const IntakeSurface& s) {
                         {"open_ends", c.caps.size()},
                         {"fan_caps", c.fan_caps},
                         {"wrapped", c.wrapped},
+                        {"staircase_smoothed", c.smoothed},
                         {"alpha_mm", c.wrap_alpha},
                         {"offset_mm", c.wrap_offset},
                         {"volume_mm3", c.volume},

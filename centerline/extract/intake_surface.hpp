@@ -31,6 +31,7 @@ struct IntakeSurface {
   TriangleMesh wall;
   std::vector<std::string> repairs;   // units and every repair of close_surface, one line each
   std::vector<std::string> warnings;  // suspicions that changed nothing (e.g. maybe centimetres)
+  std::vector<std::pair<std::string, double>> stage_seconds;  // "load", then close_surface's stages
   bool repaired() const { return !repairs.empty(); }
 };
 

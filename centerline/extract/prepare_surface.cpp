@@ -1,6 +1,7 @@
 #include "centerline/extract/prepare_surface.hpp"
 
 #include "centerline/extract/alpha_wrap_surface.hpp"
+#include "centerline/extract/smooth_staircase.hpp"
 #include "centerline/extract/vessel_scale.hpp"
 
 #include <CGAL/boost/graph/Euler_operations.h>
@@ -21,6 +22,9 @@
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 
 #include <array>
+#include <cstdint>
+#include <unordered_map>
+#include <chrono>
 #include <iterator>
 #include <set>
 #include <sstream>
@@ -89,6 +93,38 @@ SMesh to_surface_mesh(const TriangleMesh& mesh) {
   SMesh sm;
   if (build_directly(mesh, sm)) return sm;
   return soup_to_surface_mesh(mesh);
+}
+
+// Vertex clustering (Rossignac-Borrel): every vertex moves to the mean of the vertices in its grid
+// cell of side `cell`; faces whose corners fall into fewer than three cells disappear.
+TriangleMesh cluster_vertices(const TriangleMesh& mesh, double cell) {
+  const Eigen::RowVector3d origin = mesh.V.colwise().minCoeff();
+  std::unordered_map<std::uint64_t, int> cluster_of_cell;
+  std::vector<int> cluster(static_cast<size_t>(mesh.V.rows()));
+  std::vector<Eigen::Vector3d> sum;
+  std::vector<int> count;
+  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) {
+    const Eigen::RowVector3d q = (mesh.V.row(v) - origin) / cell;
+    const std::uint64_t key = (static_cast<std::uint64_t>(q.x()) << 42) ^ (static_cast<std::uint64_t>(q.y()) << 21) ^
+                              static_cast<std::uint64_t>(q.z());
+    auto [it, fresh] = cluster_of_cell.emplace(key, static_cast<int>(sum.size()));
+    if (fresh) sum.emplace_back(Eigen::Vector3d::Zero()), count.push_back(0);
+    cluster[static_cast<size_t>(v)] = it->second;
+    sum[static_cast<size_t>(it->second)] += mesh.V.row(v).transpose();
+    ++count[static_cast<size_t>(it->second)];
+  }
+  TriangleMesh out;
+  out.V.resize(static_cast<Eigen::Index>(sum.size()), 3);
+  for (size_t c = 0; c < sum.size(); ++c) out.V.row(static_cast<Eigen::Index>(c)) = (sum[c] / count[c]).transpose();
+  std::vector<Eigen::Vector3i> faces;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    const int a = cluster[static_cast<size_t>(mesh.F(f, 0))], b = cluster[static_cast<size_t>(mesh.F(f, 1))],
+              c = cluster[static_cast<size_t>(mesh.F(f, 2))];
+    if (a != b && b != c && a != c) faces.emplace_back(a, b, c);
+  }
+  out.F.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (size_t f = 0; f < faces.size(); ++f) out.F.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
+  return out;
 }
 
 TriangleMesh to_triangle_mesh(const SMesh& sm) {
@@ -164,6 +200,7 @@ int drop_islands(SMesh& sm, const SurfaceRepairOptions& o, ClosedSurface& out) {
 // Stage "cap": closes every boundary loop; round loops are recorded as open vessel ends.
 void cap_holes(SMesh& sm, ClosedSurface& out) {
   std::vector<SMesh::Halfedge_index> holes;
+  std::vector<bool> round;  // per hole: an open vessel end
   std::set<SMesh::Halfedge_index> seen;
   for (auto h : sm.halfedges()) {
     if (!sm.is_border(h) || seen.count(h)) continue;
@@ -186,31 +223,39 @@ void cap_holes(SMesh& sm, ClosedSurface& out) {
     cap.radius /= double(loop.size());
     // An open vessel end is a roundish planar loop; a slit left by a split non-manifold join or a
     // crack encloses almost no area and is no terminal.
-    if (loop.size() >= 5 && cap.radius > 0 && area_vector.norm() > 0.5 * kPi * cap.radius * cap.radius) {
+    round.push_back(loop.size() >= 5 && cap.radius > 0 && area_vector.norm() > 0.5 * kPi * cap.radius * cap.radius);
+    if (round.back()) {
       cap.normal = area_vector.normalized();
       out.caps.push_back(cap);
     }
   }
-  for (auto h : holes) {
+  for (size_t k = 0; k < holes.size(); ++k) {
+    const auto h = holes[k];
     std::vector<SMesh::Face_index> patch;
-    PMP::triangulate_hole(sm, h, std::back_inserter(patch));
-    if (patch.empty() && sm.is_border(h)) {
-      // No triangulation without a non-manifold edge (the loop runs along a split join): a fan
-      // around a new centroid vertex always closes it topologically; the wrap then fixes the shape.
+    // Only the planar (2D constrained Delaunay) filling: the 3D Delaunay search loops forever on
+    // some ragged cut ends with this inexact kernel, and the cubic search takes minutes on loops of
+    // a few hundred edges. What they would have filled gets a fan around the centroid instead.
+    PMP::triangulate_hole(sm, h, std::back_inserter(patch),
+                          PMP::parameters::use_delaunay_triangulation(false).do_not_use_cubic_algorithm(true));
+    if (sm.is_border(h)) {
+      // A fan around a new centroid vertex always closes a loop topologically. On a round vessel end
+      // it is a fine cap; on any other loop (a seam left by split non-manifold joins) its shape is
+      // makeshift and the wrap stage rebuilds the surface.
       CGAL::Euler::fill_hole(h, sm);
       Eigen::Vector3d c = Eigen::Vector3d::Zero();
-      int k = 0;
-      for (auto v : CGAL::vertices_around_face(h, sm)) c += to_eigen(sm.point(v)), ++k;
-      c /= std::max(1, k);
+      int corners = 0;
+      for (auto v : CGAL::vertices_around_face(h, sm)) c += to_eigen(sm.point(v)), ++corners;
+      c /= std::max(1, corners);
       const auto centre = CGAL::Euler::add_center_vertex(h, sm);
       sm.point(sm.target(centre)) = Point(c.x(), c.y(), c.z());
-      ++out.fan_caps;
+      if (round[k]) ++out.fan_end_caps;
+      else ++out.fan_caps;
     }
   }
   if (!holes.empty())
     out.repairs.push_back("capped " + std::to_string(holes.size()) + " open boundary loop(s), " +
                           std::to_string(out.caps.size()) + " of them round vessel ends" +
-                          (out.fan_caps ? ", " + std::to_string(out.fan_caps) + " only with a fan" : std::string()));
+                          (out.fan_caps ? ", " + std::to_string(out.fan_caps) + " other(s) only with a makeshift fan" : std::string()));
 }
 
 // Every piece of a closed mesh with outward normals (per piece: pieces may nest or overlap).
@@ -240,6 +285,12 @@ ClosedSurface close_surface(const TriangleMesh& mesh, const SurfaceRepairOptions
   if (mesh.F.rows() == 0) throw std::runtime_error("the surface has no faces");
   if (!mesh.V.allFinite()) throw std::runtime_error("the surface has non-finite vertex coordinates");
   ClosedSurface out;
+  auto t0 = std::chrono::steady_clock::now();
+  auto lap = [&](const char* stage) {
+    const auto t = std::chrono::steady_clock::now();
+    out.stage_seconds.emplace_back(stage, std::chrono::duration<double>(t - t0).count());
+    t0 = t;
+  };
 
   // build
   SMesh sm;
@@ -252,13 +303,16 @@ ClosedSurface close_surface(const TriangleMesh& mesh, const SurfaceRepairOptions
                                               : std::string()));
   }
   if (sm.number_of_faces() == 0) throw std::runtime_error("the surface has no usable faces");
+  lap("build");
   // islands
   out.kept_pieces = drop_islands(sm, options, out);
   if (sm.number_of_faces() < 4) throw std::runtime_error("the surface has fewer than 4 usable faces");
+  lap("islands");
   // cap
   cap_holes(sm, out);
   if (!CGAL::is_closed(sm) || !CGAL::is_triangle_mesh(sm))
     throw std::runtime_error("the surface cannot be closed into a triangle 2-manifold (holes that cannot be capped)");
+  lap("cap");
   // wrap
   const bool wrap = options.force_wrap || out.kept_pieces > 1 || out.fan_caps > 0;
   if (wrap) {
@@ -279,6 +333,7 @@ ClosedSurface close_surface(const TriangleMesh& mesh, const SurfaceRepairOptions
                           fixed(out.wrap_offset, 3) + " (thin vessels' radius " + fixed(scale.small_radius, 3) + ")");
     sm = to_surface_mesh(out.mesh);
   }
+  lap("wrap");
   // orient. Border halfedges of an outward-oriented surface run counter-clockwise seen from
   // outside the hole, so the loop's area vector points out of the vessel; flip the cap normals
   // with the surface when it had to be reversed.
@@ -290,25 +345,61 @@ ClosedSurface close_surface(const TriangleMesh& mesh, const SurfaceRepairOptions
       out.repairs.push_back("normals pointed into the lumen: reversed");
     }
   }
+  lap("orient");
+  // smooth: a voxel staircase (marching cubes of a binary label map) breaks every round-section
+  // fit of the centerline and snags the wire; Taubin smoothing removes it and keeps the tube.
+  out.lattice_share = lattice_area_share(to_triangle_mesh(sm));
+  if (out.lattice_share > options.staircase_share && options.staircase_passes > 0) {
+    out.mesh = taubin_smooth(to_triangle_mesh(sm), options.staircase_passes);
+    sm = to_surface_mesh(out.mesh);
+    out.smoothed = true;
+    out.repairs.push_back("voxel staircase (" + fixed(100.0 * out.lattice_share, 0) +
+                          "% of the area faces lattice directions): Taubin-smoothed, " +
+                          std::to_string(options.staircase_passes) + " passes");
+  }
   out.volume = PMP::volume(sm);
   out.area = PMP::area(sm);
   if (!(out.volume > 0) || !(out.area > 0)) throw std::runtime_error("the surface encloses no volume (a single open sheet?)");
   out.mesh = to_triangle_mesh(sm);
+  lap("smooth");
   return out;
 }
 
 TriangleMesh remesh_surface(const TriangleMesh& closed, double edge_length, int iterations) {
   if (!(edge_length > 0)) throw std::runtime_error("remeshing needs a positive edge length");
   CGAL::get_default_random() = CGAL::Random(0);  // deterministic output, whatever ran before
-  SMesh sm = to_surface_mesh(closed);
-  // A dense input (segmentations and generated anatomies come at a fraction of the
-  // radius per edge) is first decimated by shortest-edge collapse, which is far cheaper
-  // per removed edge than the remesher's collapse pass; the remesher then evens it out.
-  namespace SMS = CGAL::Surface_mesh_simplification;
-  SMS::edge_collapse(sm, SMS::Edge_length_stop_predicate<double>(0.5 * edge_length),
-                     CGAL::parameters::get_cost(SMS::Edge_length_cost<SMesh>())
-                         .get_placement(SMS::Midpoint_placement<SMesh>()));
-  sm.collect_garbage();
+  double area = 0.0;
+  for (Eigen::Index f = 0; f < closed.F.rows(); ++f) {
+    const Eigen::Vector3d a = closed.V.row(closed.F(f, 0)), b = closed.V.row(closed.F(f, 1)), c = closed.V.row(closed.F(f, 2));
+    area += 0.5 * (b - a).cross(c - a).norm();
+  }
+  const double target_faces = area / (0.433 * edge_length * edge_length);
+  SMesh sm;
+  if (static_cast<double>(closed.F.rows()) > kClusterDecimationRatio * target_faces) {
+    // Far denser than the target (a fine marching-cubes surface: 1M faces for 15k): shortest-edge
+    // collapse costs about 15 us per input face, so vertices are first clustered on a grid of
+    // half the target edge (linear time; the thinnest vessel keeps 4+ cells across its radius),
+    // the soup repaired, and the collapse runs on the ~10x smaller result.
+    sm = soup_to_surface_mesh(cluster_vertices(closed, 0.5 * edge_length));
+    PMP::keep_largest_connected_components(sm, 1);
+    sm.collect_garbage();
+    // Clustering can pinch a few spots; the soup repair opens them into small holes: cap them.
+    ClosedSurface scratch;
+    cap_holes(sm, scratch);
+    if (!CGAL::is_closed(sm) || !CGAL::is_triangle_mesh(sm) || sm.number_of_faces() < 4) sm = to_surface_mesh(closed);
+  } else {
+    sm = to_surface_mesh(closed);
+  }
+  {
+    // A dense input (segmentations and generated anatomies come at a fraction of the
+    // radius per edge) is first decimated by shortest-edge collapse, which is far cheaper
+    // per removed edge than the remesher's collapse pass; the remesher then evens it out.
+    namespace SMS = CGAL::Surface_mesh_simplification;
+    SMS::edge_collapse(sm, SMS::Edge_length_stop_predicate<double>(0.5 * edge_length),
+                       CGAL::parameters::get_cost(SMS::Edge_length_cost<SMesh>())
+                           .get_placement(SMS::Midpoint_placement<SMesh>()));
+    sm.collect_garbage();
+  }
   // No projection back onto the input: it costs an AABB query per vertex per pass on
   // the (possibly dense) input, and MCF needs the shape, not sub-edge fidelity; every
   // measurement afterwards is taken on the original wall.

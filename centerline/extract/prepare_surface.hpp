@@ -3,6 +3,7 @@
 // outward-oriented triangle 2-manifold with a face size tied to the vessel radius.
 #include <Eigen/Core>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/mesh/triangle_mesh.hpp"
@@ -28,6 +29,10 @@ struct SurfaceRepairOptions {
   bool force_wrap = false;      // wrap even a surface the cheap repairs closed (tests, comparisons)
   double wrap_alpha_factor = 0.5;    // ball radius = this x the thin vessels' radius (vessel_scale.hpp)
   double wrap_offset_factor = 0.04;  // offset = this x the same radius (the wall moves out by it)
+  // A surface with more than this share of its area facing voxel-lattice directions is a voxel
+  // staircase (smooth_staircase.hpp) and gets `staircase_passes` Taubin passes (0: never).
+  double staircase_share = 0.5;
+  int staircase_passes = 10;
 };
 
 struct ClosedSurface {
@@ -39,11 +44,15 @@ struct ClosedSurface {
   int kept_pieces = 1;             // pieces big enough to be vessel (> 1 forces a wrap)
   bool soup_repaired = false;      // the faces did not form a consistent 2-manifold as given
   long split_vertices = 0;         // vertices duplicated to undo non-manifold joins
-  long fan_caps = 0;               // holes only a fan around their centroid could close
+  long fan_caps = 0;               // non-round holes only a fan around their centroid could close (-> wrap)
+  long fan_end_caps = 0;           // round vessel ends capped by a fan (non-planar loops): a fine cap
   bool flipped = false;            // normals pointed into the lumen and were reversed
   bool wrapped = false;            // the result is an alpha wrap of the repaired input
+  double lattice_share = 0.0;      // area share facing voxel-lattice directions (smooth_staircase.hpp)
+  bool smoothed = false;           // a voxel staircase was Taubin-smoothed
   double wrap_alpha = 0.0, wrap_offset = 0.0, wrap_scale_radius = 0.0;
   std::vector<std::string> repairs;  // every repair above, one human-readable line each
+  std::vector<std::pair<std::string, double>> stage_seconds;  // wall time of each stage below
   double volume = 0.0, area = 0.0; // of `mesh`
   // Radius of a tube with the same volume/area ratio (V/A = r/2): the size remeshing
   // and every tolerance of the pipeline are tied to.
@@ -60,9 +69,15 @@ struct ClosedSurface {
 //   wrap     several vessel-sized pieces or a fan cap: alpha wrap of everything (alpha and offset
 //            from the thin vessels' radius), so a closed manifold always comes out
 //   orient   normals outwards (positive volume)
+//   smooth   a voxel staircase (marching cubes of a label map) is Taubin-smoothed
 // Every repair is listed in `repairs`. Throws std::runtime_error "<problem>" for an unusable
 // surface: no faces, non-finite coordinates, a sheet that encloses no volume.
 ClosedSurface close_surface(const TriangleMesh& mesh, const SurfaceRepairOptions& options = {});
+
+// Inputs with more faces than this many times the target count get their vertices clustered on a
+// grid of half the target edge before the edge collapse (remesh_surface): a fine marching-cubes
+// surface (1M faces) then takes seconds, not tens. The committed anatomies stay below it.
+inline constexpr double kClusterDecimationRatio = 20.0;
 
 // Isotropic remeshing of a closed surface to edges of about `edge_length`
 // (`iterations` passes of split/collapse/flip/smooth). Keeps it closed.

@@ -5,6 +5,7 @@
 #include <csignal>
 #include <iostream>
 
+#include "apps/runner/navigation_anatomy.hpp"
 #include "apps/server/tcp_server.hpp"
 #include "engine/task/navigation_task.hpp"
 #include "engine/task/observation.hpp"
@@ -65,7 +66,7 @@ int main(int argc, char** argv) {
     config.omega_plane = gw::parse_omega_plane(omega_plane);
     gw::observation_layout(config);  // refuses omega_side in the paper's plane, naming why
     const gw::WireParams wire = wire_json.empty() ? gw::default_wire_params() : gw::load_wire_params(wire_json);
-    const gw::NavigationTask task = gw::make_navigation_task(config, wire, gw::load_anatomies(anatomies, index));
+    const gw::NavigationTask task = gw::make_navigation_task(config, wire, gw::load_indexed_anatomies(anatomies, index));
     gw::TcpServer server(task, options);
     g_server = &server;
     std::signal(SIGINT, on_signal);

@@ -1,6 +1,7 @@
 #include "apps/runner/navigation_anatomy.hpp"
 
 #include <chrono>
+#include <iostream>
 #include <filesystem>
 #include <memory>
 
@@ -88,6 +89,20 @@ NavigationAnatomy load_navigation_anatomy(const std::string& mesh_path, const Na
   auto scene = std::make_shared<const VesselScene>(make_vessel_scene(out.mesh));
   out.anatomy = make_anatomy(anatomy_name_from_path(mesh_path), graph, scene);
   out.anatomy.mesh_path = mesh_path;
+  return out;
+}
+
+std::vector<Anatomy> load_indexed_anatomies(const std::string& spec, const std::string& index_path) {
+  std::vector<Anatomy> out;
+  for (const AnatomySource& s : resolve_anatomy_sources(spec, index_path)) {
+    NavigationAnatomyOptions options;
+    options.centerline_path = s.truth;
+    options.use_cache = false;
+    NavigationAnatomy nav = load_navigation_anatomy(s.mesh, options);
+    for (const std::string& r : nav.repairs) std::cerr << "repaired: " << s.mesh << ": " << r << "\n";
+    nav.anatomy.name = s.name;
+    out.push_back(std::move(nav.anatomy));
+  }
   return out;
 }
 

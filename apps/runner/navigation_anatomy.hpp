@@ -41,6 +41,12 @@ struct NavigationAnatomy {
 // for a surface the extraction cannot handle; std::invalid_argument when the graph has no target.
 NavigationAnatomy load_navigation_anatomy(const std::string& mesh_path, const NavigationAnatomyOptions& options = {});
 
+// The anatomies a spec names (engine/task/anatomy.hpp: sets, names of `index_path`, or
+// mesh paths with a .truth.json beside them), each surface taken in through the mesh intake and
+// its graph read from its truth: what guidewire-server trains on. A clean file gives exactly the
+// anatomy load_anatomies gives; a user's surface is repaired, with its repairs on stderr.
+std::vector<Anatomy> load_indexed_anatomies(const std::string& spec, const std::string& index_path);
+
 // "coronary" for ".../coronary.stl".
 std::string anatomy_name_from_path(const std::string& mesh_path);
 

@@ -96,3 +96,41 @@ def test_cli_refuses_unknown_anatomy():
                          timeout=60)
     assert out.returncode == 1
     assert "no_such_anatomy" in out.stderr
+
+
+def test_a_users_inward_surface_is_repaired_and_served(tmp_path):
+    """The server takes a user's mesh (with its .truth.json beside it) through the same mesh intake as
+    navigate: t1 with every triangle reversed is repaired, not refused, and episodes run on it."""
+    import shutil
+    import struct
+
+    import numpy as np
+
+    path = find_server_binary()
+    if not path.is_file():
+        pytest.skip(f"guidewire-server not built ({path}); set GW_SERVER_BIN or GW_BUILD_DIR")
+    from pathlib import Path
+    t1 = Path(__file__).resolve().parents[2] / "anatomies/train/t1_straight_y/t1_straight_y"
+    raw = (t1.with_suffix(".stl")).read_bytes()
+    n = struct.unpack("<I", raw[80:84])[0]
+    facets = np.frombuffer(raw[84:84 + 50 * n], dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])).copy()
+    facets["v"] = facets["v"][:, ::-1, :]  # reverse every triangle: normals into the lumen
+    mesh = tmp_path / "inward.stl"
+    mesh.write_bytes(raw[:84] + facets.tobytes())
+    shutil.copy(t1.with_suffix(".truth.json"), tmp_path / "inward.truth.json")
+
+    proc = subprocess.Popen([str(path), "--port", "0", "--host", "127.0.0.1", "--anatomies", str(mesh)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, stdin=subprocess.DEVNULL)
+    try:
+        port = int(json.loads(proc.stdout.readline())["port"])
+        c = Conn(port)
+        r = c.ask(b'{"cmd":"reset","seed":1,"options":{"target":2}}')
+        assert r["ok"], r
+        s = c.ask(b'{"cmd":"step","action":[0.0]}')
+        assert s["ok"] and not s["info"].get("diverged", False), s
+        c.close()
+    finally:
+        proc.send_signal(signal.SIGINT)
+        proc.wait(timeout=10)
+    err = proc.stderr.read().decode()
+    assert "repaired:" in err and "reversed" in err, err

@@ -1,4 +1,5 @@
-"""VMTK centerlines of every anatomy in anatomies/index.json, for bench-centerline.
+"""VMTK centerlines of every anatomy in anatomies/index.json (or `--index FILE`, e.g. the
+segmentation-like set's manifest.json), for bench-centerline.
 
 VMTK is the reference tool the C++ extractor is compared with (issue 4). It needs
 Python >= 3.12 and lives in its own virtual environment, apart from the training venv:
@@ -7,6 +8,11 @@ Python >= 3.12 and lives in its own virtual environment, apart from the training
     /path/vmtk-venv/bin/pip install vmtk
     /path/vmtk-venv/bin/python training/guidewire_nav/vmtk_centerline.py > vmtk.json
     build/apps/bench-centerline --vmtk vmtk.json
+    /path/vmtk-venv/bin/python training/guidewire_nav/vmtk_centerline.py --index SET/manifest.json > vmtk_set.json
+    build/apps/bench-centerline --index SET/manifest.json --vmtk vmtk_set.json
+
+VMTK gets the file exactly as a user has it (no repair): a mesh whose manifest entry says
+"scale_hint": "m" gets its seeds in metres and its centerline scaled back to mm.
 
 For each anatomy, vmtkcenterlines (Voronoi diagram + fast marching, seeds given as
 points: the true inlet as source, the true targets as targets, so VMTK gets the same
@@ -51,9 +57,13 @@ def centerlines(stl: Path, source, targets):
 
 
 def main(argv):
-    root = Path(__file__).resolve().parents[2]
-    index = json.loads((root / "anatomies" / "index.json").read_text())
-    only = set(argv[1:])
+    args = argv[1:]
+    index_path = Path(__file__).resolve().parents[2] / "anatomies" / "index.json"
+    if args[:1] == ["--index"]:
+        index_path, args = Path(args[1]).resolve(), args[2:]
+    root = index_path.parent.parent  # paths in an index are relative to its folder's parent
+    index = json.loads(index_path.read_text())
+    only = set(args)
     out = {}
     for a in index["anatomies"]:
         if only and a["name"] not in only:
@@ -62,11 +72,15 @@ def main(argv):
         if not mesh.exists() or not truth_path.exists():
             continue
         truth = json.loads(truth_path.read_text())
-        source = truth["inlet"]["position"]
-        targets = [t["position"] for t in truth["targets"]]
+        unit = 0.001 if a.get("scale_hint") == "m" else 1.0
+        source = [c * unit for c in truth["inlet"]["position"]]
+        targets = [[c * unit for c in t["position"]] for t in truth["targets"]]
         try:
             with contextlib.redirect_stdout(sys.stderr):  # vmtk logs on stdout
                 seconds, lines = centerlines(mesh, source, targets)
+            for line in lines:
+                line["points"] = [[c / unit for c in p] for p in line["points"]]
+                line["radii"] = [r / unit for r in line["radii"]]
             out[a["name"]] = {"seconds": seconds, "lines": lines}
         except Exception as e:  # report, keep going with the other anatomies
             out[a["name"]] = {"error": str(e)}

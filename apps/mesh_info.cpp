@@ -1,5 +1,5 @@
 // mesh-info: load a vessel surface, print its validation report and what the intake repairs.
-//   mesh-info --anatomy anatomies/coronary/coronary.stl [--scale 1000] [--json]
+//   mesh-info --anatomy anatomies/coronary/coronary.stl [--scale 1000] [--json] [--out repaired.stl]
 // Exit 0 when the mesh is usable after repair, 1 with one error line otherwise.
 #include <CLI/CLI.hpp>
 #include <cmath>
@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "centerline/extract/intake_surface.hpp"
+#include "centerline/vessel_tree/write_stl.hpp"
 #include "engine/mesh/validate_mesh.hpp"
 
 int main(int argc, char** argv) {
@@ -14,15 +15,18 @@ int main(int argc, char** argv) {
   std::string path;
   gw::IntakeOptions options;
   bool json = false;
+  std::string out;
   app.add_option("--anatomy,anatomy", path, "mesh file (.stl, .obj, .ply)")->required();
   app.add_option("--scale", options.scale, "multiply coordinates (1000 for metres -> mm); default: automatic");
   app.add_flag("--json", json, "print the report as one JSON object {\"mesh\": ..., \"intake\": ...}");
+  app.add_option("--out", out, "write the repaired closed surface (what the centerline is extracted from) as binary STL, mm");
   CLI11_PARSE(app, argc, argv);
 
   try {
     if (app.count("--scale") && (!(options.scale > 0) || !std::isfinite(options.scale)))
       throw gw::MeshError(path + ": --scale must be a positive number");
     const gw::IntakeSurface s = gw::intake_surface(path, options);
+    if (!out.empty()) gw::write_stl(s.closed.mesh, out, "guidewire-nav mesh-info: repaired surface of " + path);
     if (json) {
       nlohmann::json j = {{"mesh", nlohmann::json::parse(gw::report_to_json(s.input))},
                           {"intake", nlohmann::json::parse(gw::intake_report_json(s))}};

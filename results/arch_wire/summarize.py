@@ -1,0 +1,160 @@
+#!/usr/bin/env python3
+"""Summarise the aortic-arch runs of issue 35 item 5 (results/arch_wire).
+
+Reads the `navigate --json` files arch_type{1,2,3}_{policy,scripted-omega,push-only}.json (and the
+coronary-wire comparison arch_type1_policy_coronary014.json) beside this script, names each target
+from the `navigate --list` tables targets_arch_typeK.txt (saved from the same mesh and centerline:
+the target numbering differs between arch types) and prints Markdown tables: per arch x target x
+controller successes/episodes, rate and Wilson 95 % interval, then outcome counts.
+
+Usage: python3 results/arch_wire/summarize.py [> table.md]     (standard library only)
+"""
+import json
+import math
+import os
+import re
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ARCHES = ["arch_type1", "arch_type2", "arch_type3"]
+CONTROLLERS = ["policy", "scripted-omega", "push-only"]
+OUTCOMES = ["success", "wrong_branch", "stuck", "timeout", "diverged"]
+
+
+def wilson(k, n, z=1.959963984540054):
+    """Wilson score interval for k successes in n trials (95 % by default)."""
+    if n == 0:
+        return (float("nan"), float("nan"))
+    p = k / n
+    d = 1 + z * z / n
+    centre = (p + z * z / (2 * n)) / d
+    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / d
+    return (max(0.0, centre - half), min(1.0, centre + half))
+
+
+def target_names(arch):
+    """Target id -> vessel name, from the navigate --list table (by the target's end radius)."""
+    names = {}
+    path = os.path.join(HERE, f"targets_{arch}.txt")
+    for line in open(path):
+        m = re.match(r"\s*(\d+)\s+\(([^)]*)\)\s+([\d.]+)\s+([\d.]+)", line)
+        if not m:
+            continue
+        tid, radius = int(m.group(1)), float(m.group(4))
+        if radius > 10:
+            name = "ascending aorta"
+        elif radius > 5:
+            name = "brachiocephalic"
+        elif radius > 3.9:
+            name = "left subclavian"
+        else:
+            name = "left common carotid"
+        names[tid] = (name, float(m.group(3)))
+    return names
+
+
+def load(arch, controller, suffix=""):
+    path = os.path.join(HERE, f"{arch}_{controller}{suffix}.json")
+    if not os.path.exists(path):
+        return None
+    with open(path) as f:
+        return json.load(f)
+
+
+def per_target(data):
+    """target id -> {outcome: count}."""
+    table = {}
+    for r in data["results"]:
+        counts = table.setdefault(r["target"], {o: 0 for o in OUTCOMES})
+        counts[r["outcome"]] = counts.get(r["outcome"], 0) + 1
+    return table
+
+
+def cell(counts):
+    n = sum(counts.values())
+    k = counts.get("success", 0)
+    lo, hi = wilson(k, n)
+    return f"{k}/{n} | {100 * k / n:.0f}% | {100 * lo:.0f}-{100 * hi:.0f}%"
+
+
+def main():
+    out = []
+    missing = []
+    out.append("### Success per arch x target x controller (successes/episodes | rate | Wilson 95 %)\n")
+    header = "| arch | target (path mm) | " + " | ".join(f"{c} k/n | rate | 95 % CI" for c in CONTROLLERS) + " |"
+    out.append(header)
+    out.append("|" + "---|" * (2 + 3 * len(CONTROLLERS)))
+    data = {(a, c): load(a, c) for a in ARCHES for c in CONTROLLERS}
+    for (a, c), d in data.items():
+        if d is None:
+            missing.append(f"{a}_{c}.json")
+    for a in ARCHES:
+        names = target_names(a)
+        tables = {c: per_target(data[(a, c)]) if data[(a, c)] else None for c in CONTROLLERS}
+        for tid in sorted(names):
+            name, path_mm = names[tid]
+            cells = []
+            for c in CONTROLLERS:
+                t = tables[c]
+                cells.append(cell(t[tid]) if t and tid in t else "missing | | ")
+            out.append(f"| {a} | {tid}: {name} ({path_mm:.0f}) | " + " | ".join(cells) + " |")
+        # all targets together
+        cells = []
+        for c in CONTROLLERS:
+            d = data[(a, c)]
+            cells.append(cell({"success": d["successes"], "other": d["episodes"] - d["successes"]})
+                         if d else "missing | | ")
+        out.append(f"| {a} | **all 4** | " + " | ".join(cells) + " |")
+
+    out.append("\n### Outcome counts per arch x controller x target\n")
+    out.append("| arch | controller | target | " + " | ".join(OUTCOMES) + " | wrong_branch folded | median sim s |")
+    out.append("|" + "---|" * (3 + len(OUTCOMES) + 2))
+    for a in ARCHES:
+        names = target_names(a)
+        for c in CONTROLLERS:
+            d = data[(a, c)]
+            if not d:
+                out.append(f"| {a} | {c} | missing |" + " |" * (len(OUTCOMES) + 2))
+                continue
+            for tid in sorted(names):
+                rs = [r for r in d["results"] if r["target"] == tid]
+                counts = [sum(r["outcome"] == o for r in rs) for o in OUTCOMES]
+                folded = sum(bool(r.get("folded")) for r in rs)
+                times = sorted(r["sim_time_s"] for r in rs)
+                med = times[len(times) // 2] if times else float("nan")
+                out.append(f"| {a} | {c} | {tid}: {names[tid][0]} | " + " | ".join(map(str, counts))
+                           + f" | {folded} | {med:.1f} |")
+
+    cmp_ = load("arch_type1", "policy", "_coronary014")
+    out.append("\n### Wire comparison, arch_type1, policy (same seeds 0..)\n")
+    out.append("| wire | target | k/n | rate | 95 % CI | outcomes |")
+    out.append("|---|---|---|---|---|---|")
+    names = target_names("arch_type1")
+    for label, d in [("0.035\" angled (aortic_035_angled.json)", data[("arch_type1", "policy")]),
+                     ("0.014\" coronary (default)", cmp_)]:
+        if not d:
+            out.append(f"| {label} | missing | | | | |")
+            continue
+        for tid, counts in sorted(per_target(d).items()):
+            oc = ", ".join(f"{o} {counts[o]}" for o in OUTCOMES[1:] if counts[o])
+            out.append(f"| {label} | {tid}: {names[tid][0]} | {cell(counts)} | {oc} |")
+    if cmp_ is None:
+        missing.append("arch_type1_policy_coronary014.json")
+
+    out.append("\n### Wall time per run (navigate's wall_time_s, one thread)\n")
+    for a in ARCHES:
+        for c in CONTROLLERS:
+            d = data[(a, c)]
+            if d:
+                out.append(f"- {a} {c}: {d['episodes']} episodes, {d['wall_time_s']:.0f} s "
+                           f"({d['wall_time_s'] / d['episodes']:.2f} s/episode)")
+    if cmp_:
+        out.append(f"- arch_type1 policy, coronary wire: {cmp_['episodes']} episodes, {cmp_['wall_time_s']:.0f} s")
+    if missing:
+        out.append("\nMissing runs: " + ", ".join(missing))
+    print("\n".join(out))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

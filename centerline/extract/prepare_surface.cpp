@@ -348,10 +348,11 @@ ClosedSurface close_surface(const TriangleMesh& mesh, const SurfaceRepairOptions
   lap("orient");
   // smooth: a voxel staircase (marching cubes of a binary label map) breaks every round-section
   // fit of the centerline and snags the wire; Taubin smoothing removes it and keeps the tube.
-  out.lattice_share = lattice_area_share(to_triangle_mesh(sm));
+  out.mesh = to_triangle_mesh(sm);
+  out.lattice_share = lattice_area_share(out.mesh);
   if (out.lattice_share > options.staircase_share && options.staircase_passes > 0) {
-    out.mesh = taubin_smooth(to_triangle_mesh(sm), options.staircase_passes);
-    sm = to_surface_mesh(out.mesh);
+    out.mesh = taubin_smooth(out.mesh, options.staircase_passes);
+    sm = to_surface_mesh(out.mesh);  // same vertex and face order: volume and area of the smoothed surface
     out.smoothed = true;
     out.repairs.push_back("voxel staircase (" + fixed(100.0 * out.lattice_share, 0) +
                           "% of the area faces lattice directions): Taubin-smoothed, " +
@@ -360,7 +361,6 @@ ClosedSurface close_surface(const TriangleMesh& mesh, const SurfaceRepairOptions
   out.volume = PMP::volume(sm);
   out.area = PMP::area(sm);
   if (!(out.volume > 0) || !(out.area > 0)) throw std::runtime_error("the surface encloses no volume (a single open sheet?)");
-  out.mesh = to_triangle_mesh(sm);
   lap("smooth");
   return out;
 }

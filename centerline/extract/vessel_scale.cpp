@@ -24,7 +24,7 @@ VesselScale estimate_vessel_scale(const TriangleMesh& surface, int samples) {
   if (!(total > 0)) throw std::runtime_error("the surface has zero area");
   const VesselWall wall(surface);
   // Stratified by area: the k-th sample is the face holding the (k + 1/2)/n-th fraction of the area.
-  std::vector<std::pair<double, double>> radius_area;  // local radius, weight
+  std::vector<double> radii;  // one per ray that met the opposite wall
   const double bbox = (surface.V.colwise().maxCoeff() - surface.V.colwise().minCoeff()).norm();
   Eigen::Index last = -1;
   for (int k = 0; k < samples; ++k) {
@@ -40,18 +40,17 @@ VesselScale estimate_vessel_scale(const TriangleMesh& surface, int samples) {
     const Eigen::Vector3d centre = (a + b + c) / 3.0;
     const double gap = 1e-6 * bbox;
     const double hit = wall.ray_hit(centre + gap * inward, inward, bbox);
-    if (std::isfinite(hit) && hit > 0) radius_area.emplace_back(0.5 * (hit + gap), 1.0);
+    if (std::isfinite(hit) && hit > 0) radii.push_back(0.5 * (hit + gap));
   }
-  if (radius_area.empty()) throw std::runtime_error("no inward ray meets the opposite wall: the surface encloses no lumen");
-  std::sort(radius_area.begin(), radius_area.end());
+  if (radii.empty()) throw std::runtime_error("no inward ray meets the opposite wall: the surface encloses no lumen");
+  std::sort(radii.begin(), radii.end());
   auto percentile = [&](double q) {
-    const size_t i = std::min(radius_area.size() - 1, static_cast<size_t>(q * static_cast<double>(radius_area.size())));
-    return radius_area[i].first;
+    return radii[std::min(radii.size() - 1, static_cast<size_t>(q * static_cast<double>(radii.size())))];
   };
   VesselScale s;
   s.small_radius = percentile(0.10);
   s.median_radius = percentile(0.50);
-  s.samples = static_cast<int>(radius_area.size());
+  s.samples = static_cast<int>(radii.size());
   return s;
 }
 

@@ -1,0 +1,135 @@
+// Validation of Coulomb contact friction against its closed forms: a wire on an inclined plane starts to
+// slide at tan(angle) = mu, and a wire pulled through a rigid bend obeys the capstan law
+// T_out = T_in exp(mu theta). Reference formulas and tolerances are written in each test.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "validation_helpers.hpp"
+
+using namespace gw;
+using namespace gw::validation;
+
+namespace {
+
+const double kGravity = 9810.0;  // mm/s^2
+
+// A 40 mm wire (1 mm elements) lying along +x on the floor z = 0 of a closed box, gravity tilted by
+// `angle` so that the slope runs down +x along the wire's axis; returns the mean axial displacement
+// [mm] after `seconds`. Node 0 is the introducer's (always held): its element is given zero stiffness
+// so the rest of the wire lies free on the plane.
+double slide_on_incline(double mu, double angle, double seconds) {
+  const double length = 40.0;
+  WireParams p = beam_params(length, 1.0, 5e-4);
+  p.friction = mu;
+  p.inlet_clearance_mm = 0;
+  p.damping_stiffness = 1e-4;
+  WireModel m = make_wire_model(p, 0.01);
+  m.stiffness[0].setZero();
+  static const VesselScene box = make_vessel_scene(grid_box({-20, -10, 0}, {160, 10, 6}, 36));
+  WireState s = make_initial_state(m, Eigen::Vector3d(0, 0, m.radius_mm), Eigen::Vector3d::UnitX(), 0.0, length);
+  const Eigen::Vector3d g = kGravity * Eigen::Vector3d(std::sin(angle), 0, -std::cos(angle));
+  for (int i = 1; i < m.nodes; ++i) s.external_force[i] = m.mass[i] * g;
+  double start = 0;
+  for (int i = 1; i < m.nodes; ++i) start += s.x[i].x() / (m.nodes - 1);
+  const int steps = static_cast<int>(std::round(seconds / m.dt));
+  for (int i = 0; i < steps; ++i) {
+    const StepReport rep = step(m, &box, Control{}, s);
+    if (!rep.ok) FAIL("the step failed: " << rep.problem);
+  }
+  double end = 0;
+  for (int i = 1; i < m.nodes; ++i) end += s.x[i].x() / (m.nodes - 1);
+  return end - start;
+}
+
+}  // namespace
+
+TEST_CASE("a wire on an inclined plane starts to slide at tan(angle) = mu", "[validation][friction]") {
+  // Reference: Coulomb's law on a slope, stick while tan(angle) <= mu; once sliding, the acceleration is
+  // a = g (sin(angle) - mu cos(angle)). Tolerances: the threshold angle located by bisection on
+  // "moved more than 0.01 mm in 0.3 s" within 2% of atan(mu) in tan; at tan(angle) = 0.95 mu it stays
+  // (< 0.001 mm in 0.3 s); at tan(angle) = 1.5 mu it moves 0.5 a t^2 in t = 0.2 s within 2%.
+  for (double mu : {0.1, 0.3}) {
+    const double stay = slide_on_incline(mu, std::atan(0.95 * mu), 0.3);
+    const double slide_angle = std::atan(1.5 * mu);
+    const double slide = slide_on_incline(mu, slide_angle, 0.2);
+    const double a = kGravity * (std::sin(slide_angle) - mu * std::cos(slide_angle));
+    INFO("mu " << mu << ": moved " << stay << " mm at tan = 0.95 mu, " << slide << " mm at 1.5 mu (0.5 a t^2 = "
+               << 0.5 * a * 0.04 << ")");
+    CHECK(std::abs(stay) < 1e-3);
+    CHECK(slide == Approx(0.5 * a * 0.04).epsilon(0.02));
+    double lo = 0.8, hi = 1.2;  // tan(angle) / mu
+    for (int i = 0; i < 7; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (slide_on_incline(mu, std::atan(mid * mu), 0.3) > 0.01 ? hi : lo) = mid;
+    }
+    WARN("inclined plane, mu = " << mu << ": slides from tan(angle) / mu = " << 0.5 * (lo + hi) << " (+-"
+                                 << 0.5 * (hi - lo) << ")");
+    CHECK(0.5 * (lo + hi) == Approx(1.0).margin(0.02));
+  }
+}
+
+TEST_CASE("a wire pulled through a rigid bend obeys the capstan law T_out = T_in exp(mu theta)", "[validation][friction]") {
+  // Reference: Euler-Eytelwein capstan equation for a flexible rope sliding round a rigid bend of angle
+  // theta, T_out = T_in exp(mu theta). The law is for a rope: the wire's bending stiffness is cut by
+  // 10^3 here (EI / R^2 = 0.7 mN against T_in = 500 mN), its axial stiffness is the wire's. Sub-step
+  // 50 us: at the shipped 0.5 ms such a near-rope under tension chatters (the implicit matrix holds the
+  // Gauss-Newton stiffness only, so the tension's transverse stiffness acts explicitly). Set-up:
+  // 1 mm radius tube, 30 mm straight, a bend of radius 8 mm and angle theta, 40 mm straight; the wire
+  // laid along the centreline, a distal load T_in along the exit, the proximal end retracted at 2 mm/s.
+  // T_out and T_in are the axial forces (EA x stretch) averaged over the straight elements on either
+  // side, over the last 0.2 s of 0.5 s of sliding. Tolerance 5%.
+  for (double theta : {M_PI / 2, M_PI})
+    for (double mu : {0.1, 0.2}) {
+      const Path path = sample_path(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(),
+                                    {{30.0, 0, 0, {}}, {0, theta, 8.0, Eigen::Vector3d::UnitZ()}, {40.0, 0, 0, {}}},
+                                    0.5);
+      static std::map<double, VesselScene> scenes;
+      if (!scenes.count(theta)) scenes.emplace(theta, tube_scene(path, 1.0));
+      const VesselScene& scene = scenes.at(theta);
+      const double inserted = 30.0 + 8.0 * theta + 35.0;
+      WireParams p = beam_params(inserted + 20.0, 1.0, 5e-5);
+      p.friction = mu;
+      p.damping_stiffness = 1e-3;
+      WireModel m = make_wire_model(p, 0.01);
+      for (Vec6& k : m.stiffness) {
+        k[4] *= 1e-3;
+        k[5] *= 1e-3;
+      }
+      WireState s = make_initial_state(m, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), 0.0, inserted);
+      lay_along(m, s, path);
+      const double t_in = 500.0;
+      const Eigen::Vector3d exit = path.tangents.back();
+      s.external_force.back() = t_in * exit;
+      const Control pull{-2.0, 0.0};
+      double out_sum = 0, in_sum = 0;
+      int samples = 0;
+      for (int i = 0; i < 50; ++i) {
+        const StepReport rep = step(m, &scene, pull, s);
+        if (!rep.ok) FAIL("the step failed: " << rep.problem);
+        if (i < 30) continue;
+        // Elements whose both nodes lie on the straights (arc from the inlet, with 3 mm margins).
+        const int k = first_free_node(m, s);
+        double out = 0, in = 0;
+        int n_out = 0, n_in = 0;
+        for (int e = k; e + 1 < m.nodes; ++e) {
+          const double a = s.inserted_length_mm - m.arc_from_tip[e];
+          if (a > 5.0 && a < 27.0) {
+            out += axial_force(m, s, e);
+            ++n_out;
+          } else if (a > 30.0 + 8.0 * theta + 3.0 && a < inserted - 5.0) {
+            in += axial_force(m, s, e);
+            ++n_in;
+          }
+        }
+        out_sum += out / n_out;
+        in_sum += in / n_in;
+        ++samples;
+      }
+      const double ratio = out_sum / in_sum;
+      INFO("theta " << theta << " mu " << mu << ": T_in " << in_sum / samples << " mN, T_out " << out_sum / samples
+                    << " mN, ratio " << ratio << " against exp(mu theta) = " << std::exp(mu * theta));
+      WARN("capstan theta = " << theta << ", mu = " << mu << ": T_out / T_in = " << ratio << " against "
+                              << std::exp(mu * theta) << " (" << 100.0 * (ratio / std::exp(mu * theta) - 1) << "%)");
+      CHECK(ratio == Approx(std::exp(mu * theta)).epsilon(0.05));
+    }
+}

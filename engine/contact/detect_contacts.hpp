@@ -20,6 +20,9 @@ struct ContactPoint {
   Eigen::Vector3d n, t1, t2;    // n: into the lumen; t1, t2: tangent plane
   double gap = 0;               // wall clearance of the wire surface at the start of the step [mm]
   Eigen::Vector3d v_free;       // velocity of the point after the free (contact-less) motion [mm/s]
+  // Angular velocity of the point after the free motion [rad/s] (interpolated like v_free); only read
+  // with friction at the wire surface (ContactWorkspace::lever), filled by the caller then.
+  Eigen::Vector3d w_free = Eigen::Vector3d::Zero();
 };
 
 // Number of contact points (nodes + element midpoints) a model has.

@@ -9,10 +9,26 @@ namespace {
 
 const double kPenetrationRecovery = 0.3;  // fraction of a penetration removed per sub-step
 
+// Rows (n, t1, t2) of H on one node's (v, w) with friction at the wire surface p = x - r n: the surface
+// point moves with v - r w x n, so a tangent row is (t^T, -r (n x t)^T); the normal row has no rotation.
+Eigen::Matrix<double, 3, 6> surface_rows(const ContactPoint& c, double r) {
+  Eigen::Matrix<double, 3, 6> j;
+  j.row(0) << c.n.transpose(), 0, 0, 0;
+  j.row(1) << c.t1.transpose(), -r * c.n.cross(c.t1).transpose();
+  j.row(2) << c.t2.transpose(), -r * c.n.cross(c.t2).transpose();
+  return j;
+}
+
 // Translational 3x3 block of A^-1 between contact-node slots i and j.
 template <class Workspace>
 auto& xblock(Workspace& ws, int i, int j) {
   return ws.xtt[static_cast<std::size_t>(i) * ws.nodes.size() + j];
+}
+
+// Full 6x6 block of A^-1 between contact-node slots i and j (friction with a lever arm only).
+template <class Workspace>
+auto& xblock6(Workspace& ws, int i, int j) {
+  return ws.x66[static_cast<std::size_t>(i) * ws.nodes.size() + j];
 }
 
 // The chain products between consecutive contact nodes, and the blocks of A^-1 that every solve needs:
@@ -27,6 +43,18 @@ void build_inverse_blocks(const BlockTridiagonalFactor& f, ContactWorkspace& ws)
     Mat6& t = ws.chain[s];
     t = -f.g[ws.nodes[s]];
     for (int j = ws.nodes[s] + 1; j < ws.nodes[s + 1]; ++j) t = (t * (-f.g[j])).eval();
+  }
+  if (ws.lever > 0) {  // friction with a lever arm: H also touches the rotations, keep whole blocks
+    if (static_cast<int>(ws.x66.size()) < k * k) ws.x66.resize(static_cast<std::size_t>(k) * k);
+    for (int a = 0; a < k; ++a) {
+      xblock6(ws, a, a) = ws.sigma[ws.nodes[a]];
+      if (a + 1 < k) {
+        const Mat6 x = ws.chain[a] * ws.sigma[ws.nodes[a + 1]];
+        xblock6(ws, a, a + 1) = x;
+        xblock6(ws, a + 1, a) = x.transpose();
+      }
+    }
+    return;
   }
   for (int a = 0; a < k; ++a) {
     xblock(ws, a, a) = ws.sigma[ws.nodes[a]].topLeftCorner<3, 3>();
@@ -43,6 +71,23 @@ void build_inverse_blocks(const BlockTridiagonalFactor& f, ContactWorkspace& ws)
 void build_inverse_column(ContactWorkspace& ws, int b) {
   if (ws.x_built[b]) return;
   const int k = static_cast<int>(ws.nodes.size());
+  if (ws.lever > 0) {  // the same walk with whole 6x6 blocks
+    Mat6 right = ws.sigma[ws.nodes[b]];
+    for (int a = b - 1; a >= 0; --a) {
+      right = (ws.chain[a] * right).eval();
+      xblock6(ws, a, b) = right;
+      xblock6(ws, b, a) = right.transpose();
+    }
+    Mat6 left = ws.chain[b];
+    for (int a = b + 1; a < k; ++a) {
+      const Mat6 x = left * ws.sigma[ws.nodes[a]];
+      xblock6(ws, b, a) = x;
+      xblock6(ws, a, b) = x.transpose();
+      if (a + 1 < k) left = (left * ws.chain[a]).eval();
+    }
+    ws.x_built[b] = 1;
+    return;
+  }
   Eigen::Matrix<double, 6, 3> right = ws.sigma[ws.nodes[b]].leftCols<3>();
   for (int a = b - 1; a >= 0; --a) {  // (A^-1)(u_a, u_b) = chain[a] ... chain[b-1] Sigma_b
     right = (ws.chain[a] * right).eval();
@@ -92,6 +137,16 @@ Eigen::Matrix3d compliance_block(const std::vector<ContactPoint>& contacts, cons
   const int ca[2] = {ws.slot[c.node_a - ff], c.node_b >= 0 ? ws.slot[c.node_b - ff] : -1};
   const int da[2] = {ws.slot[d.node_a - ff], d.node_b >= 0 ? ws.slot[d.node_b - ff] : -1};
   const double cw[2] = {c.wa, c.wb}, dw[2] = {d.wa, d.wb};
+  if (ws.lever > 0) {  // J_c (sum of weighted 6x6 blocks) J_d^T
+    Mat6 x6 = Mat6::Zero();
+    for (int p = 0; p < 2; ++p) {
+      if (ca[p] < 0) continue;
+      for (int q = 0; q < 2; ++q)
+        if (da[q] >= 0) x6.noalias() += (cw[p] * dw[q]) * xblock6(ws, ca[p], da[q]);
+    }
+    const Eigen::Matrix<double, 3, 6> jx = ws.jac[ci] * x6;
+    return jx * ws.jac[di].transpose();
+  }
   Eigen::Matrix3d x = Eigen::Matrix3d::Zero();
   for (int p = 0; p < 2; ++p) {
     if (ca[p] < 0) continue;
@@ -137,6 +192,10 @@ ContactSolveResult solve_contact_impulses(const std::vector<ContactPoint>& conta
     ws.basis[ci].row(1) = cc.t1.transpose();
     ws.basis[ci].row(2) = cc.t2.transpose();
   }
+  if (ws.lever > 0) {
+    if (ws.jac.size() < static_cast<std::size_t>(m)) ws.jac.resize(m);
+    for (int ci = 0; ci < m; ++ci) ws.jac[ci] = surface_rows(contacts[ci], ws.lever);
+  }
   for (int ci = 0; ci < m; ++ci) {
     const ContactPoint& cc = contacts[ci];
     ws.w_diag[ci] = compliance_block(contacts, ws, ci, ci);
@@ -146,6 +205,7 @@ ContactSolveResult solve_contact_impulses(const std::vector<ContactPoint>& conta
     // one-step correction of a deep point throws soft parts of the wire across the vessel.
     const double gap_rate = cc.gap >= 0 ? cc.gap / dt : kPenetrationRecovery * cc.gap / dt;
     ws.bias.segment<3>(3 * ci) << gap_rate + cc.n.dot(vc), cc.t1.dot(vc), cc.t2.dot(vc);
+    if (ws.lever > 0) ws.bias.segment<3>(3 * ci) += ws.jac[ci].rightCols<3>() * cc.w_free;  // surface slip
   }
 
   // Projected Gauss-Seidel on u = W p + bias, kept up to date column by column: most contacts found by
@@ -203,6 +263,12 @@ void contact_velocity_change(const BlockTridiagonal& a, const BlockTridiagonalFa
   const auto& p = ws.impulse;
   for (std::size_t ci = 0; ci < contacts.size(); ++ci) {
     const ContactPoint& c = contacts[ci];
+    if (ws.lever > 0) {  // force and the friction's torque about the axis: J^T p
+      const Vec6 gen = surface_rows(c, ws.lever).transpose() * p.segment<3>(3 * ci);
+      r.segment<6>(6 * (c.node_a - ws.first_free)) += c.wa * gen;
+      if (c.node_b >= 0) r.segment<6>(6 * (c.node_b - ws.first_free)) += c.wb * gen;
+      continue;
+    }
     const Eigen::Vector3d fimp = c.n * p[3 * ci] + c.t1 * p[3 * ci + 1] + c.t2 * p[3 * ci + 2];
     r.segment<3>(6 * (c.node_a - ws.first_free)) += c.wa * fimp;
     if (c.node_b >= 0) r.segment<3>(6 * (c.node_b - ws.first_free)) += c.wb * fimp;

@@ -30,6 +30,13 @@ struct ContactWorkspace {
   Eigen::VectorXd u;                 // contact velocities W p + bias during the solve
   int first_free = 0;
   std::vector<Eigen::Matrix3d> basis;  // per contact rows (n, t1, t2)
+  // Friction lever arm [mm] (set by the caller before prepare_contact_compliance): 0, the paper's model,
+  // friction acts at the wire's axis (H touches translations only); r > 0, at the wire surface on the
+  // wall side, p = x - r n, so a tangent row t of H is (t^T, -r (n x t)^T) on (v, w): the surface point
+  // moves with v + w x (-r n), and the friction impulse p_t there gives the node the torque -r n x p_t.
+  double lever = 0;
+  std::vector<Mat6> x66;             // with a lever: full 6x6 blocks of A^-1 between contact nodes (k x k)
+  std::vector<Eigen::Matrix<double, 3, 6>> jac;  // with a lever: per contact rows of H on one node's (v, w)
 };
 
 struct ContactSolveResult {
@@ -51,7 +58,7 @@ ContactSolveResult solve_contact_impulses(const std::vector<ContactPoint>& conta
 void contact_velocity_change(const BlockTridiagonal& a, const BlockTridiagonalFactor& f,
                              const std::vector<ContactPoint>& contacts, ContactWorkspace& ws);
 
-// All three steps; adds the velocity correction to `dv`. and adds the velocity correction to `dv` (6 per free node).
+// All three steps; adds the velocity correction to `dv` (6 per free node).
 // `first_free`: global index of local node 0. Writes impulses per contact (3 each: n, t1, t2) into ws.impulse.
 ContactSolveResult solve_contacts(const BlockTridiagonal& a, const BlockTridiagonalFactor& f, int first_free,
                                   const std::vector<ContactPoint>& contacts, double dt, double mu, int iterations,

@@ -1,5 +1,7 @@
 #include "engine/sim/assemble_system.hpp"
 
+#include "engine/wire/node_rotational_inertia.hpp"
+
 namespace gw {
 
 namespace {
@@ -37,8 +39,15 @@ Vec6 held_velocity_change(const WireState& st, int h, double push, double rotate
 Vec6 node_rhs(const WireModel& model, const WireState& st, int i, double dt) {
   const double alpha = model.params.damping_mass;
   Vec6 r;
+  if (!model.params.per_axis_rotational_inertia) {
+    r << dt * st.external_force[i] - dt * alpha * model.mass[i] * st.v[i],
+        dt * st.external_torque[i] - dt * alpha * model.rot_inertia[i] * st.w[i];
+    return r;
+  }
+  // Per-axis tensor: Euler's equations in the world frame, I dw/dt = torque - w x (I w) (explicit).
+  const Eigen::Vector3d iw = node_rotational_inertia(model, i, st.q[i].toRotationMatrix()) * st.w[i];
   r << dt * st.external_force[i] - dt * alpha * model.mass[i] * st.v[i],
-      dt * st.external_torque[i] - dt * alpha * model.rot_inertia[i] * st.w[i];
+      dt * st.external_torque[i] - dt * alpha * iw - dt * st.w[i].cross(iw);
   return r;
 }
 
@@ -64,7 +73,10 @@ void assemble_system(const WireModel& model, const WireState& st, double push, d
   for (int i = k; i < n; ++i) {
     Mat6& d = sys.a.diag[i - k];
     d.diagonal().head<3>().setConstant(mscale * model.mass[i]);
-    d.diagonal().tail<3>().setConstant(mscale * model.rot_inertia[i]);
+    if (model.params.per_axis_rotational_inertia)
+      d.block<3, 3>(3, 3) = mscale * node_rotational_inertia(model, i, sys.rot[i]);
+    else
+      d.diagonal().tail<3>().setConstant(mscale * model.rot_inertia[i]);
     sys.rhs.segment<6>(6 * (i - k)) = node_rhs(model, st, i, dt);
   }
   const Vec6 held_dv = held_velocity_change(st, k - 1, push, rotate);
@@ -99,9 +111,11 @@ void assemble_system_sparse(const WireModel& model, const WireState& st, double 
   const double mscale = 1.0 + dt * model.params.damping_mass;
   for (int i = k; i < n; ++i) {
     const int r = 6 * (i - k);
+    const Eigen::Matrix3d inertia = node_rotational_inertia(model, i, st.q[i].toRotationMatrix());
     for (int j = 0; j < 3; ++j) {
       trip.emplace_back(r + j, r + j, mscale * model.mass[i]);
-      trip.emplace_back(r + 3 + j, r + 3 + j, mscale * model.rot_inertia[i]);
+      for (int c = 0; c < 3; ++c)
+        if (inertia(j, c) != 0) trip.emplace_back(r + 3 + j, r + 3 + c, mscale * inertia(j, c));
     }
     rhs.segment<6>(r) += node_rhs(model, st, i, dt);
   }

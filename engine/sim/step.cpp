@@ -8,6 +8,7 @@
 #include "engine/contact/detect_contacts.hpp"
 #include "engine/contact/solve_contacts.hpp"
 #include "engine/sim/assemble_system.hpp"
+#include "engine/wire/node_rotational_inertia.hpp"
 #include "engine/wire/so3.hpp"
 
 namespace gw {
@@ -109,6 +110,12 @@ StepReport substep(const WireModel& model, const VesselScene* scene, const Contr
     if (!ws.contacts.empty()) {
       const double mu = model.params.friction;
       const int iters = model.params.contact_iterations;
+      ws.cws.lever = model.params.friction_torque ? model.radius_mm : 0.0;
+      if (ws.cws.lever > 0)  // the surface point's slip needs the free angular velocity too
+        for (ContactPoint& c : ws.contacts) {
+          c.w_free = c.wa * (state.w[c.node_a] + dv.segment<3>(6 * (c.node_a - k) + 3));
+          if (c.node_b >= 0) c.w_free += c.wb * (state.w[c.node_b] + dv.segment<3>(6 * (c.node_b - k) + 3));
+        }
       prepare_contact_compliance(ws.sys.a, ws.factor, k, ws.contacts, ws.cws);
       // Warm start from the previous sub-step's normal impulses of the same points.
       const int m = static_cast<int>(ws.contacts.size());
@@ -171,7 +178,11 @@ StepReport substep(const WireModel& model, const VesselScene* scene, const Contr
     state.w[i] += dv.segment<3>(6 * (i - k) + 3);
     state.x[i] += dt * state.v[i];
     state.q[i] = (Eigen::Quaterniond(so3_exp(dt * state.w[i])) * state.q[i]).normalized();
-    kinetic += 0.5 * model.mass[i] * state.v[i].squaredNorm() + 0.5 * model.rot_inertia[i] * state.w[i].squaredNorm();
+    kinetic += 0.5 * model.mass[i] * state.v[i].squaredNorm();
+    if (model.params.per_axis_rotational_inertia)
+      kinetic += 0.5 * state.w[i].dot(node_rotational_inertia(model, i, state.q[i].toRotationMatrix()) * state.w[i]);
+    else
+      kinetic += 0.5 * model.rot_inertia[i] * state.w[i].squaredNorm();
   }
   // Drive the introducer part.
   state.inserted_length_mm = std::clamp(state.inserted_length_mm + dt * push, 0.0, model.params.length_mm);

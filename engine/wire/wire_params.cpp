@@ -16,7 +16,8 @@ bool known_field(const std::string& k) {
                                 "density_kg_per_mm3", "shear_coefficient", "damping_mass", "damping_stiffness",
                                 "element_length_mm", "tip_element_length_mm", "fine_region_mm", "friction",
                                 "contact_margin_mm", "divergence_margin_mm", "max_speed_mm_per_s",
-                                "contact_iterations", "max_substep_s", "inlet_clearance_mm", "contact_slack_mm", "comment"};
+                                "contact_iterations", "max_substep_s", "inlet_clearance_mm", "contact_slack_mm", "friction_torque",
+                                "per_axis_rotational_inertia", "comment"};
   for (const char* n : names)
     if (k == n) return true;
   return false;
@@ -94,6 +95,13 @@ WireParams load_wire_params(const std::string& json_path) {
       throw std::runtime_error(json_path + ": field 'contact_iterations' must be an integer");
     p.contact_iterations = j["contact_iterations"].get<int>();
   }
+  auto get_bool = [&](const char* name, bool& field) {
+    if (!j.contains(name)) return;
+    if (!j[name].is_boolean()) throw std::runtime_error(json_path + ": field '" + name + "' must be true or false");
+    field = j[name].get<bool>();
+  };
+  get_bool("friction_torque", p.friction_torque);
+  get_bool("per_axis_rotational_inertia", p.per_axis_rotational_inertia);
   for (auto it = j.begin(); it != j.end(); ++it)
     if (!known_field(it.key())) throw std::runtime_error(json_path + ": unknown field '" + it.key() + "'");
   check_wire_params(p, json_path);

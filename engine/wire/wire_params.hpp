@@ -36,6 +36,15 @@ struct WireParams {
   double max_substep_s = 0.0005;
   double max_speed_mm_per_s = 1e5;     // any node faster than 100 m/s = exploding simulation
   int contact_iterations = 100;        // projected Gauss-Seidel sweeps per sub-step (at most)
+  // Friction with a lever arm: wall friction acts at the wire's surface (radius r from the axis), so its
+  // tangential impulse also turns the wire (torque -r n x p_t on the rotational degrees of freedom) and
+  // the wall can hold the wire's roll, winding up torsion that releases when it slips. Off (the paper's
+  // model, the one the results table was measured with): friction acts at the axis, on translations only.
+  bool friction_torque = false;
+  // Rotational inertia per axis: rho J about the wire's tangent, rho I = rho J / 2 about the two bending
+  // axes (the lumped node tensor turns with the node's frame, with the gyroscopic term w x (I w)). Off
+  // (the table's model): the polar moment rho J about all three axes.
+  bool per_axis_rotational_inertia = false;
 };
 
 // Reads a JSON object whose keys are the field names above; missing keys keep defaults.

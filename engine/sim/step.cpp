@@ -178,11 +178,11 @@ StepReport substep(const WireModel& model, const VesselScene* scene, const Contr
     state.w[i] += dv.segment<3>(6 * (i - k) + 3);
     state.x[i] += dt * state.v[i];
     state.q[i] = (Eigen::Quaterniond(so3_exp(dt * state.w[i])) * state.q[i]).normalized();
-    kinetic += 0.5 * model.mass[i] * state.v[i].squaredNorm();
     if (model.params.per_axis_rotational_inertia)
-      kinetic += 0.5 * state.w[i].dot(node_rotational_inertia(model, i, state.q[i].toRotationMatrix()) * state.w[i]);
+      kinetic += 0.5 * model.mass[i] * state.v[i].squaredNorm() +
+                 0.5 * state.w[i].dot(node_rotational_inertia(model, i, state.q[i].toRotationMatrix()) * state.w[i]);
     else
-      kinetic += 0.5 * model.rot_inertia[i] * state.w[i].squaredNorm();
+      kinetic += 0.5 * model.mass[i] * state.v[i].squaredNorm() + 0.5 * model.rot_inertia[i] * state.w[i].squaredNorm();
   }
   // Drive the introducer part.
   state.inserted_length_mm = std::clamp(state.inserted_length_mm + dt * push, 0.0, model.params.length_mm);

@@ -1,4 +1,4 @@
-// bench-mechanics [--anatomy STEM] [--push MM_PER_S] [--length MM] [--params F.json]: mechanics speed.
+// bench-mechanics [--anatomy STEM] [--push MM_PER_S] [--length MM] [--params F.json] [--friction-torque]: mechanics speed.
 // Prints one JSON object: a full insertion into a committed anatomy (coronary by default) with the
 // per-stage breakdown, and the cost per integration sub-step for 50, 100, 200 and 400 nodes.
 #include <CLI/CLI.hpp>
@@ -15,12 +15,14 @@ int main(int argc, char** argv) {
   double push = 20.0, length = 100.0, roll = 0.0;
   int scaling_substeps = 2000;
   std::string params_path;
+  bool friction_torque = false;
   app.add_option("--anatomy", stem, "anatomy path without extension (STEM.stl, STEM.truth.json)");
   app.add_option("--push", push, "insertion speed [mm/s]");
   app.add_option("--length", length, "inserted length to reach [mm]");
   app.add_option("--roll", roll, "initial axial roll [rad]");
   app.add_option("--scaling-substeps", scaling_substeps, "timed sub-steps per node count");
   app.add_option("--params", params_path, "wire parameter JSON (default: the built-in 0.014 inch wire)");
+  app.add_flag("--friction-torque", friction_torque, "friction at the wire surface (turns the wire; default off)");
   CLI11_PARSE(app, argc, argv);
   try {
     std::ifstream in(stem + ".truth.json");
@@ -33,8 +35,9 @@ int main(int argc, char** argv) {
       dir[i] = truth.at("inlet").at("direction").at(i).get<double>();
     }
     const gw::VesselScene scene = gw::make_vessel_scene(gw::load_valid_mesh(stem + ".stl"));
-    const gw::WireModel model =
-        gw::make_wire_model(params_path.empty() ? gw::default_wire_params() : gw::load_wire_params(params_path), 0.01);
+    gw::WireParams params = params_path.empty() ? gw::default_wire_params() : gw::load_wire_params(params_path);
+    if (friction_torque) params.friction_torque = true;
+    const gw::WireModel model = gw::make_wire_model(params, 0.01);
     const gw::InsertionBenchmark b = gw::run_insertion_benchmark(model, scene, inlet, dir, roll, push, length);
     const double sub = b.substeps > 0 ? b.substeps : 1;
     auto us = [&](double s) { return 1e6 * s / sub; };
@@ -52,6 +55,7 @@ int main(int argc, char** argv) {
         {"dt_s", model.dt},
         {"substeps_per_step", model.substeps},
         {"push_mm_per_s", push},
+        {"friction_torque", model.params.friction_torque},
         {"insertion",
          {{"ok", b.ok},
           {"problem", b.problem},

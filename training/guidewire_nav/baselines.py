@@ -142,14 +142,15 @@ def evaluate(controllers, anatomies, episodes: int, seed: int, workers: int, env
 
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--anatomies", default="t1_straight_y,t2_curved_straight_exit,t3_out_of_plane_steep,t4_s_curving_back")
+    p.add_argument("--anatomies", default="t1_straight_y,t2_curved_straight_exit,t3_out_of_plane_steep,t4_s_curving_back",
+                   help="comma-separated anatomy names")
     p.add_argument("--controllers", default="push_only,omega_scripted,omega_scripted_ccw",
                    help="comma-separated: " + ", ".join(CONTROLLERS))
     p.add_argument("--episodes", type=int, default=20, help="episodes per anatomy and controller")
-    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--seed", type=int, default=0, help="first episode seed (anatomy i, episode k: S + 1000 i + k)")
     p.add_argument("--workers", type=int, default=2, help="parallel processes, one server each")
     p.add_argument("--host", default=None, help="use a running server instead of starting one per worker")
-    p.add_argument("--port", type=int, default=None)
+    p.add_argument("--port", type=int, default=None, help="port of the running server (with --host)")
     args = p.parse_args()
     anatomies = [a for a in args.anatomies.split(",") if a]
     env_kwargs = {"anatomies": ",".join(anatomies)} if args.port is None else {"host": args.host, "port": args.port}

@@ -65,9 +65,9 @@ def main(argv=None) -> None:
     from stable_baselines3 import SAC
 
     p = argparse.ArgumentParser(description="Benchmark the SAC actor: torch vs onnxruntime vs Eigen")
-    p.add_argument("--obs-size", type=int, default=20)
-    p.add_argument("--calls", type=int, default=20000)
-    p.add_argument("--build-dir")
+    p.add_argument("--obs-size", type=int, default=20, help="observation size of the random actor")
+    p.add_argument("--calls", type=int, default=20000, help="timed actions per runtime")
+    p.add_argument("--build-dir", help="build folder holding apps/bench-policy (default: $GW_BUILD_DIR or build/)")
     a = p.parse_args(argv)
     torch.set_num_threads(1)
     model = SAC("MlpPolicy", _Env(a.obs_size), policy_kwargs={"net_arch": [256, 256, 256]}, device="cpu", seed=0)

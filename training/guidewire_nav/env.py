@@ -14,6 +14,11 @@ the server's default) or "guidewire-nav/obs/1" (the paper's omega: ``server_args
 "correct_branch"]``); "guidewire-nav/obs/3" (``server_args=["--omega-side"]``) adds a twelfth, omega's
 sine. The exported actor records which one it was trained on.  Action: one float in
 [-1, 1], the proximal rotation rate as a fraction of the maximum.  Reward: paper Eq. 3.
+Info after a step: the server's fields (anatomy, target, success, wrong_branch, stuck, step_limit, ...)
+and ``is_success`` (= success; the name SB3 reads).
+
+Registered with gymnasium on ``import guidewire_nav``: ``gym.make("GuidewireNav-v0", **kwargs)`` with
+the keyword arguments of GuidewireEnv.
 """
 
 from __future__ import annotations
@@ -180,12 +185,16 @@ class GuidewireEnv(gym.Env):
         if not math.isfinite(value):
             raise ValueError(f"action is not finite: {value}")
         reply = self._request({"cmd": "step", "action": [value]})
+        info = reply["info"]
+        # "is_success" is the key SB3 (rollout/success_rate, EvalCallback) and other libraries read;
+        # "success" is the server's own name, kept for code that reads it.
+        info["is_success"] = bool(info.get("success", False))
         return (
             self._obs(reply["obs"]),
             float(reply["reward"]),
             bool(reply["terminated"]),
             bool(reply["truncated"]),
-            reply["info"],
+            info,
         )
 
     def close(self):

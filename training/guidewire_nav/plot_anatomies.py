@@ -57,8 +57,8 @@ def draw(ax, root: Path, entry: dict, max_faces: int = 12000) -> None:
 
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--index", default="anatomies/index.json")
-    parser.add_argument("--out", default="anatomies/anatomies.png")
+    parser.add_argument("--index", default="anatomies/index.json", help="anatomy index to draw")
+    parser.add_argument("--out", default="anatomies/anatomies.png", help="output PNG")
     args = parser.parse_args(argv)
 
     import matplotlib

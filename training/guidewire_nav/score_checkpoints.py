@@ -135,8 +135,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--seed", type=int, default=1000, help="validation seeds S.. (the table uses 0..)")
     p.add_argument("--train-episode-scale", type=float, default=0.4,
                    help="training anatomies: this times the table's 100 episodes (0 = skip)")
-    p.add_argument("--train-seed", type=int, default=5000)
-    p.add_argument("--threads", type=int, default=os.cpu_count() or 1)
+    p.add_argument("--train-seed", type=int, default=5000, help="training anatomies: seeds S..")
+    p.add_argument("--threads", type=int, default=os.cpu_count() or 1, help="episodes run in parallel")
     p.add_argument("--out", type=Path, help="write the scores as JSON here (default: <run>/scores.json)")
     p.add_argument("--json", action="store_true", help="print JSON instead of a Markdown table")
     a = p.parse_args(argv)

@@ -559,7 +559,7 @@ def main(argv=None):
     ap.add_argument("--only", help="make only this case")
     ap.add_argument("--voxel", type=float, default=0.35, help="voxel of the coronary-sized trees, mm")
     ap.add_argument("--arch-voxel", type=float, default=0.5, help="voxel of the aortic arches, mm")
-    ap.add_argument("--seed", type=int, default=35)
+    ap.add_argument("--seed", type=int, default=35, help="set seed (each case's generator: this and its name)")
     ap.add_argument("--large", action="store_true", help=f"also pl_large (~1M faces, voxel {LARGE_VOXEL} mm)")
     ap.add_argument("--check", action="store_true", help="run build/apps/centerline on every mesh and compare")
     args = ap.parse_args(argv)

@@ -4,8 +4,8 @@ Reads top to bottom: settings -> environments (one guidewire-server per worker) 
 paper's hyper-parameters -> learn with progress bar, logs, checkpoints and periodic evaluation ->
 export the deterministic actor to JSON for the C++ runtime -> training-curve PNG.
 
-    python -m guidewire_nav.train --total-steps 150000 --envs 2 --out runs/sac
-    python -m guidewire_nav.train --total-steps 300 --learning-starts 100 --out /tmp/smoke   # CI smoke run
+    gw-train --total-steps 150000 --envs 2 --out runs/sac      # = python -m guidewire_nav.train ...
+    gw-train --total-steps 300 --learning-starts 100 --out /tmp/smoke   # CI smoke run
 
 Paper (Scarponi et al., section 3.1): actor and critics 3x256, lr 1e-4, batch 256, buffer 10,000,
 gamma 0.98, entropy coefficient learned, 1,000 warm-up steps, one gradient update per step; the 4
@@ -23,72 +23,94 @@ import platform
 import subprocess
 import sys
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 import torch
+from stable_baselines3 import SAC
+from stable_baselines3.common.callbacks import BaseCallback, CallbackList, CheckpointCallback
+from stable_baselines3.common.logger import configure
+from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv, VecMonitor
+
+
+def arg(default, help: str):
+    """A Settings field with its --help text (each flag's help is its comment)."""
+    return field(default=default, metadata={"help": help})
 
 
 @dataclass
 class Settings:
-    out: str = "runs/sac"                  # run folder: logs, checkpoints, actor.json, curve PNG
-    anatomies: str = "train"               # anatomy set (or comma-separated names) the servers load
-    omega_plane: str = "approach"          # omega's plane: approach (obs/2) or correct_branch (paper, obs/1)
-    omega_side: bool = False               # also observe omega's sine (obs/3, approach plane only): which way the
-                                           #   rotation carries the bend towards -1 (observation.hpp says why)
-    reward_omega_centre: float = 0.1       # reward sigmoid 2/(1+exp(slope(omega-centre)))-1; paper Eq. 3 is
-    reward_omega_slope: float = 5.0        #   centre 0.1, slope 5 (engine/task/reward.hpp says why to change)
-    push_speed: float = 10.0               # constant insertion speed, mm/s (the paper does not state it; 10 = 0.4 mm
-                                           #   per 40 ms env step)
-    roll_disturbance: float = 0.0          # per-episode probability of an unannounced 45-180 deg proximal
-                                           #   roll (robustness; 0 = the paper's task, task_config.hpp says why)
-    random_start: float = 0.0              # per-episode probability of starting part-way to the bifurcation
-                                           #   (trees hand control over near one; task_config.hpp says why)
-    init_model: str = ""                   # fine-tune: start from this SB3 SAC zip (e.g. a checkpoint)
-    init_actor: str = ""                   # fine-tune: start the actor from an exported actor JSON (fresh critics)
-    init_log_std: float = -2.3             #   its log-std head (the JSON has only the mean): std ~0.1 before tanh
-    actor_freeze_steps: int = 0            # environment steps the actor (and entropy coefficient) stay fixed while
-                                           #   fresh critics learn its values; then ordinary SAC
-    anchor_weight: float = 0.0             # fine-tune: adds weight * |a(s) - a_start(s)|^2 (deterministic actions on
-                                           #   replayed states) to the actor loss, tying it to the actor it started from
-    total_steps: int = 150_000             # environment steps over all workers
-    envs: int = 2                          # parallel servers (SubprocVecEnv); 1 = in-process DummyVecEnv
-    seed: int = 0
+    out: str = arg("runs/sac", "run folder: logs, checkpoints, actor.json, curve PNG")
+    anatomies: str = arg("train", "anatomy set (or comma-separated names) the servers load")
+    omega_plane: str = arg("approach", "omega's plane: approach (obs/2) or correct_branch (paper, obs/1)")
+    omega_side: bool = arg(False, "also observe omega's sine (obs/3, approach plane only): which way the rotation "
+                                  "carries the bend towards -1 (engine/task/observation.hpp says why)")
+    reward_omega_centre: float = arg(0.1, "centre of the reward sigmoid 2/(1+exp(slope(omega-centre)))-1; paper "
+                                          "Eq. 3: 0.1 (engine/task/reward.hpp says why to change)")
+    reward_omega_slope: float = arg(5.0, "slope of the reward sigmoid; paper Eq. 3: 5")
+    push_speed: float = arg(10.0, "constant insertion speed, mm/s (the paper does not state it; 10 = 0.4 mm per "
+                                  "40 ms env step)")
+    roll_disturbance: float = arg(0.0, "per-episode probability of an unannounced 45-180 deg proximal roll "
+                                       "(robustness; 0 = the paper's task, task_config.hpp says why)")
+    random_start: float = arg(0.0, "per-episode probability of starting part-way to the bifurcation (trees hand "
+                                   "control over near one; task_config.hpp says why)")
+    init_model: str = arg("", "fine-tune: start from this SB3 SAC zip (e.g. a checkpoint)")
+    init_actor: str = arg("", "fine-tune: start the actor from an exported actor JSON (fresh critics)")
+    init_log_std: float = arg(-2.3, "with --init-actor: its log-std head (the JSON has only the mean); -2.3 = std "
+                                    "~0.1 before tanh")
+    actor_freeze_steps: int = arg(0, "environment steps the actor (and entropy coefficient) stay fixed while fresh "
+                                     "critics learn its values; then ordinary SAC")
+    anchor_weight: float = arg(0.0, "fine-tune: adds weight * |a(s) - a_start(s)|^2 (deterministic actions on "
+                                    "replayed states) to the actor loss, tying it to the actor it started from")
+    total_steps: int = arg(150_000, "environment steps over all workers")
+    envs: int = arg(2, "parallel servers (SubprocVecEnv); 1 = in-process DummyVecEnv")
+    seed: int = arg(0, "seed of numpy, torch, SAC and the environments' episodes")
     # SAC, paper defaults
-    learning_rate: float = 1e-4
-    actor_learning_rate: float = 0.0       # the actor's own rate (0 = learning_rate); fine-tuning: Adam moves every
-                                           #   weight ~lr per step however small the gradient, see main()
-    batch_size: int = 256
-    buffer_size: int = 10_000
-    gamma: float = 0.98
-    learning_starts: int = 1_000
-    train_freq: int = 1
-    gradient_steps: int = -1               # -1: one update per environment step over all workers (paper)
-    net_arch: str = "256,256,256"          # actor and critics (SB3's default is only 2x256)
-    ent_coef: str = "auto"
-    device: str = "auto"                   # "cuda" on the GPU machine, "cpu" otherwise
+    learning_rate: float = arg(1e-4, "Adam learning rate of actor, critics and entropy coefficient (paper)")
+    actor_learning_rate: float = arg(0.0, "the actor's own rate (0 = --learning-rate); fine-tuning: Adam moves "
+                                          "every weight ~lr per step however small the gradient (see SACWithActorRate)")
+    batch_size: int = arg(256, "minibatch size of each gradient step (paper)")
+    buffer_size: int = arg(10_000, "replay buffer size in transitions (paper)")
+    gamma: float = arg(0.98, "discount factor (paper)")
+    learning_starts: int = arg(1_000, "random-action warm-up steps before learning (paper)")
+    train_freq: int = arg(1, "environment steps (per worker) between updates")
+    gradient_steps: int = arg(-1, "gradient steps per update; -1: one per environment step over all workers "
+                                  "(paper)")
+    net_arch: str = arg("256,256,256", "hidden layers of the actor and the critics (SB3's default is only 2x256)")
+    ent_coef: str = arg("auto", "entropy coefficient: 'auto' (learned, paper) or a number")
+    device: str = arg("auto", "torch device: auto, cuda or cpu")
     # logging, evaluation, checkpoints
-    eval_every: int = 10_000               # steps between evaluations (0 = only at the end)
-    eval_episodes: int = 40                # seeded episodes per evaluation, over the training anatomies
-                                           # (0 = none: pick checkpoints later with the C++ `evaluate`)
-    stop_at_success: float = 0.0           # stop early once an evaluation reaches this rate (0 = never)
-    checkpoint_every: int = 25_000
-    max_minutes: float = 0.0               # stop learning after this wall time (0 = run all total_steps)
-    progress: bool = True
-    servers: str = ""                      # connect to running servers "host:port,host:port" instead of spawning
+    eval_every: int = arg(10_000, "steps between evaluations (0 = only at the end)")
+    eval_episodes: int = arg(40, "seeded episodes per evaluation, over the training anatomies (0 = none: pick "
+                                 "checkpoints later with the C++ `evaluate` or gw-score-checkpoints)")
+    stop_at_success: float = arg(0.0, "stop early once an evaluation reaches this success rate (0 = never)")
+    checkpoint_every: int = arg(25_000, "environment steps between SB3 checkpoints (checkpoints/sac_*.zip)")
+    max_minutes: float = arg(0.0, "stop learning after this wall time (0 = run all --total-steps)")
+    progress: bool = arg(True, "show a progress bar")
+    servers: str = arg("", "connect to running servers 'host:port,host:port' instead of spawning them")
+
+
+class _HelpFormatter(argparse.RawDescriptionHelpFormatter, argparse.ArgumentDefaultsHelpFormatter):
+    """The module docstring as written, and each flag's default after its help."""
+
+
+def settings_parser() -> argparse.ArgumentParser:
+    """One flag per Settings field: --total-steps for total_steps, --no-progress for a bool."""
+    parser = argparse.ArgumentParser(prog="gw-train", description=__doc__, formatter_class=_HelpFormatter)
+    for f in dataclasses.fields(Settings):
+        flag = "--" + f.name.replace("_", "-")
+        help_text = f.metadata["help"].replace("%", "%%")
+        if f.type in ("bool", bool):
+            parser.add_argument(flag, action=argparse.BooleanOptionalAction, default=f.default, help=help_text)
+        else:
+            kind = {"int": int, "float": float, "str": str}[str(f.type)]
+            parser.add_argument(flag, type=kind, default=f.default, help=help_text)
+    return parser
 
 
 def parse_settings(argv=None) -> Settings:
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    for f in dataclasses.fields(Settings):
-        flag = "--" + f.name.replace("_", "-")
-        if f.type in ("bool", bool):
-            parser.add_argument(flag, action=argparse.BooleanOptionalAction, default=f.default)
-        else:
-            kind = {"int": int, "float": float, "str": str}[str(f.type)]
-            parser.add_argument(flag, type=kind, default=f.default)
-    return Settings(**vars(parser.parse_args(argv)))
+    return Settings(**vars(settings_parser().parse_args(argv)))
 
 
 def git_commit() -> str:
@@ -153,6 +175,111 @@ def anchor_loss(actor, reference, obs):
     Measured on actions, not on the pre-tanh means, so a saturated action may keep any mean beyond it:
     only a change of behaviour costs."""
     return ((actor(obs, deterministic=True) - reference(obs, deterministic=True)) ** 2).sum(dim=-1).mean()
+
+
+class SACWithActorRate(SAC):
+    """SAC whose actor may learn at its own rate (``actor_learning_rate`` > 0; 0 = the common one).
+
+    SB3 resets every optimiser to the one schedule before each update, so the actor's rate is set after
+    that. Why: Adam steps each weight by ~lr whatever the gradient's size, so a fresh critic's noisy
+    gradients move a good actor as fast as useful ones would (2,000 updates at 1e-4 were seen to cut the
+    shipped actor's successes on the validation trees from 98 to 69 of 110: policy/trained/README.md).
+    ``SACWithActorRate.load(path, actor_learning_rate=r, ...)`` sets it too (SB3 load sets keyword
+    arguments as attributes)."""
+
+    def __init__(self, *args, actor_learning_rate: float = 0.0, **kwargs):
+        self.actor_learning_rate = actor_learning_rate
+        super().__init__(*args, **kwargs)
+
+    def _excluded_save_params(self) -> list[str]:
+        return [*super()._excluded_save_params(), "actor_learning_rate"]  # the zips stay plain SAC's
+
+    def _update_learning_rate(self, optimizers) -> None:
+        super()._update_learning_rate(optimizers)
+        if getattr(self, "actor_learning_rate", 0.0) > 0:
+            for group in self.actor.optimizer.param_groups:
+                group["lr"] = self.actor_learning_rate
+
+
+class ActorUpdates(BaseCallback):
+    """Actor freeze and anchor, both for fine-tuning a good actor.
+
+    Freeze: a fresh critic's early gradients would undo a good actor before the critic knows its values,
+    so the actor's and the entropy coefficient's optimisers skip their steps for the first
+    ``freeze_steps`` environment steps (critic updates go on; the buffer fills with the actor's own
+    stochastic actions once learning_starts is past, so set --learning-starts low when fine-tuning from
+    a good actor).
+    Anchor: the training anatomies alone do not hold a fine-tuned actor's zero-shot behaviour in place
+    (every update redrew it: policy/trained/README.md), so each actor step may also pull the actions on a
+    replayed batch back towards ``reference`` (the starting actor; None = no anchor). SB3's SAC.train()
+    calls zero_grad, actor_loss.backward, step; the anchor's gradient is added in between, in step."""
+
+    def __init__(self, freeze_steps: int, reference=None, anchor_weight: float = 0.0, batch_size: int = 256):
+        super().__init__()
+        self.freeze_steps = freeze_steps
+        self.reference = reference
+        self.anchor_weight = anchor_weight
+        self.batch_size = batch_size
+        self.frozen = freeze_steps > 0
+
+    def _on_training_start(self) -> None:
+        actor_opt, ent_opt = self.model.actor.optimizer, self.model.ent_coef_optimizer
+
+        def actor_step(*args, **kwargs):
+            if self.frozen:
+                return None
+            if self.reference is not None:
+                obs = self.model.replay_buffer.sample(self.batch_size).observations
+                loss = anchor_loss(self.model.actor, self.reference, obs)
+                (self.anchor_weight * loss).backward()
+                self.logger.record("train/anchor_loss", loss.item())
+            return type(actor_opt).step(actor_opt, *args, **kwargs)
+
+        def ent_step(*args, **kwargs):
+            return None if self.frozen else type(ent_opt).step(ent_opt, *args, **kwargs)
+
+        actor_opt.step = actor_step  # instance attributes shadow Optimizer.step
+        if ent_opt is not None:
+            ent_opt.step = ent_step
+
+    def _on_step(self) -> bool:
+        self.frozen = self.num_timesteps < self.freeze_steps
+        return True
+
+
+class EvalCallback(BaseCallback):
+    """Periodic evaluation (success rate over seeded episodes, appended to ``evals`` and
+    out/evaluations.jsonl) keeping the best model in out/best_model.zip; stops learning once an
+    evaluation reaches --stop-at-success or the --max-minutes budget (counted from ``start``) is spent."""
+
+    def __init__(self, s: Settings, eval_env, out: Path, evals: list[dict], start: float):
+        super().__init__()
+        self.s, self.eval_env, self.out, self.evals, self.start = s, eval_env, out, evals, start
+        self.next_eval = s.eval_every if s.eval_every > 0 else None
+        self.best = -1.0
+
+    def run_eval(self) -> bool:
+        t0 = time.time()
+        result = evaluate(self.model, self.eval_env, self.s.eval_episodes, seed=10_000)
+        result.update(step=self.num_timesteps, wall_s=time.time() - self.start, eval_s=time.time() - t0)
+        self.evals.append(result)
+        self.logger.record("eval/success_rate", result["success_rate"])
+        with open(self.out / "evaluations.jsonl", "a") as f:
+            f.write(json.dumps(result) + "\n")
+        if result["success_rate"] > self.best:
+            self.best = result["success_rate"]
+            self.model.save(self.out / "best_model.zip")
+        return not (self.s.stop_at_success > 0 and result["success_rate"] >= self.s.stop_at_success)
+
+    def _on_step(self) -> bool:
+        if self.s.max_minutes > 0 and time.time() - self.start > 60 * self.s.max_minutes:
+            return False  # wall-time budget spent: learn() returns, the rest of the script runs
+        if self.s.eval_episodes <= 0:
+            return True
+        if self.next_eval is not None and self.num_timesteps >= self.next_eval:
+            self.next_eval += self.s.eval_every
+            return self.run_eval()
+        return True
 
 
 def plot_curve(out: Path, monitor_rows: list[dict], evals: list[dict], eval_label: str = "deterministic evaluation",
@@ -220,32 +347,16 @@ def main(argv=None) -> int:
     torch.manual_seed(s.seed)
 
     # --- environments: one server per worker, episodes on a random training anatomy and target
-    from stable_baselines3 import SAC
-    from stable_baselines3.common.callbacks import BaseCallback, CallbackList, CheckpointCallback
-    from stable_baselines3.common.logger import configure
-    from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv, VecMonitor
-
     fns = [make_env_fn(s, rank) for rank in range(s.envs)]
     vec_env = SubprocVecEnv(fns) if s.envs > 1 else DummyVecEnv(fns)
     vec_env = VecMonitor(vec_env, str(out / "monitor"), info_keywords=("success",))
     eval_env = make_env_fn(s, 0, eval_env=True)()
 
-    # --- SAC with the paper's settings; the actor may get its own learning rate. SB3 resets every
-    # optimiser to the one schedule before each update, so the actor's rate is set after that. Why: Adam
-    # steps each weight by ~lr whatever the gradient's size, so a fresh critic's noisy gradients move a
-    # good actor as fast as useful ones would (2,000 updates at 1e-4 were seen to cut the shipped actor's
-    # successes on the validation trees from 98 to 69 of 110: policy/trained/README.md).
-    class SACWithActorRate(SAC):
-        def _update_learning_rate(self, optimizers) -> None:
-            super()._update_learning_rate(optimizers)
-            if s.actor_learning_rate > 0:
-                for group in self.actor.optimizer.param_groups:
-                    group["lr"] = s.actor_learning_rate
-
+    # --- SAC with the paper's settings; the actor may get its own learning rate (SACWithActorRate)
     sac_settings = dict(
         learning_rate=s.learning_rate, buffer_size=s.buffer_size, batch_size=s.batch_size, gamma=s.gamma,
         learning_starts=s.learning_starts, train_freq=s.train_freq, gradient_steps=s.gradient_steps,
-        seed=s.seed, device=s.device, verbose=0,
+        seed=s.seed, device=s.device, verbose=0, actor_learning_rate=s.actor_learning_rate,
     )
     if s.init_model:  # fine-tuning: the saved networks (and learned entropy coefficient), a fresh buffer
         model = SACWithActorRate.load(s.init_model, env=vec_env, **sac_settings)
@@ -258,81 +369,17 @@ def main(argv=None) -> int:
         load_actor_json(model, s.init_actor, log_std=s.init_log_std)
     model.set_logger(configure(str(out / "logs"), ["csv", "tensorboard"]))
 
-    # --- actor freeze: a fresh critic's early gradients would undo a good actor before the critic knows
-    # its values, so the actor's and the entropy coefficient's optimisers skip their steps until then
-    # (critic updates go on; the buffer fills with the actor's own stochastic actions once
-    # learning_starts is past, so set --learning-starts low when fine-tuning from a good actor).
-    # --- anchor: the training anatomies alone do not hold a fine-tuned actor's zero-shot behaviour in
-    # place (every update redrew it: policy/trained/README.md), so each actor step may also pull the
-    # actions on a replayed batch back towards the starting actor's. SB3's SAC.train() calls
-    # zero_grad, actor_loss.backward, step; the anchor's gradient is added in between, in step.
+    # --- callbacks: actor freeze and anchor (fine-tuning), periodic evaluation keeping the best actor,
+    # checkpoints
     reference = copy.deepcopy(model.actor).requires_grad_(False) if s.anchor_weight > 0 else None
-
-    class ActorUpdates(BaseCallback):
-        frozen = s.actor_freeze_steps > 0
-
-        def _on_training_start(self) -> None:
-            actor_opt, ent_opt = self.model.actor.optimizer, self.model.ent_coef_optimizer
-
-            def actor_step(*args, **kwargs):
-                if self.frozen:
-                    return None
-                if reference is not None:
-                    obs = self.model.replay_buffer.sample(s.batch_size).observations
-                    loss = anchor_loss(self.model.actor, reference, obs)
-                    (s.anchor_weight * loss).backward()
-                    self.logger.record("train/anchor_loss", loss.item())
-                return type(actor_opt).step(actor_opt, *args, **kwargs)
-
-            def ent_step(*args, **kwargs):
-                return None if self.frozen else type(ent_opt).step(ent_opt, *args, **kwargs)
-
-            actor_opt.step = actor_step  # instance attributes shadow Optimizer.step
-            if ent_opt is not None:
-                ent_opt.step = ent_step
-
-        def _on_step(self) -> bool:
-            self.frozen = self.num_timesteps < s.actor_freeze_steps
-            return True
-
-    # --- periodic evaluation: success rate over seeded episodes; keeps the best actor
     evals: list[dict] = []
-
-    class EvalCallback(BaseCallback):
-        def __init__(self):
-            super().__init__()
-            self.next_eval = s.eval_every if s.eval_every > 0 else None
-            self.best = -1.0
-
-        def run_eval(self) -> bool:
-            t0 = time.time()
-            result = evaluate(self.model, eval_env, s.eval_episodes, seed=10_000)
-            result.update(step=self.num_timesteps, wall_s=time.time() - start, eval_s=time.time() - t0)
-            evals.append(result)
-            self.logger.record("eval/success_rate", result["success_rate"])
-            with open(out / "evaluations.jsonl", "a") as f:
-                f.write(json.dumps(result) + "\n")
-            if result["success_rate"] > self.best:
-                self.best = result["success_rate"]
-                self.model.save(out / "best_model.zip")
-            return not (s.stop_at_success > 0 and result["success_rate"] >= s.stop_at_success)
-
-        def _on_step(self) -> bool:
-            if s.max_minutes > 0 and time.time() - start > 60 * s.max_minutes:
-                return False  # wall-time budget spent: learn() returns, the rest of the script runs
-            if s.eval_episodes <= 0:
-                return True
-            if self.next_eval is not None and self.num_timesteps >= self.next_eval:
-                self.next_eval += s.eval_every
-                return self.run_eval()
-            return True
-
-    eval_cb = EvalCallback()
-    callbacks = CallbackList([ActorUpdates(), eval_cb, CheckpointCallback(max(1, s.checkpoint_every // s.envs),
-                                                          str(out / "checkpoints"), name_prefix="sac")])
+    start = time.time()
+    eval_cb = EvalCallback(s, eval_env, out, evals, start)
+    callbacks = CallbackList([ActorUpdates(s.actor_freeze_steps, reference, s.anchor_weight, s.batch_size), eval_cb,
+                              CheckpointCallback(max(1, s.checkpoint_every // s.envs), str(out / "checkpoints"),
+                                                 name_prefix="sac")])
 
     # --- learn
-    start = time.time()
     (out / "evaluations.jsonl").unlink(missing_ok=True)
     model.learn(total_timesteps=s.total_steps, callback=callbacks, progress_bar=s.progress)
     model.save(out / "final_model.zip")

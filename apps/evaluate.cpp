@@ -3,6 +3,8 @@
 //   evaluate --out results/            # full table (550 episodes a column, 4 columns)
 //   evaluate --episode-scale 0.1       # a quick look
 //   evaluate --from-json a/results.json b/results.json --out both   # runs on two --seed sets, joined
+//   evaluate --out results/ --resume   # after an interruption: the rows results.json holds are kept
+// Progress with an ETA goes to stderr; results.json and results.md are rewritten after every row.
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <fstream>
@@ -18,26 +20,46 @@
 namespace {
 
 // A results.json an earlier run wrote; throws naming the file when it is unreadable or not one.
-nlohmann::json read_results(const std::string& path) {
+nlohmann::json read_results(const std::string& path, const std::string& flag = "--from-json") {
   std::ifstream in(path);
-  if (!in) throw std::runtime_error("--from-json: cannot read '" + path + "'");
+  if (!in) throw std::runtime_error(flag + ": cannot read '" + path + "'");
   nlohmann::json result;
   try {
     result = nlohmann::json::parse(in);
   } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error("--from-json: '" + path + "' is not JSON: " + e.what());
+    throw std::runtime_error(flag + ": '" + path + "' is not JSON: " + e.what());
   }
   if (!result.contains("rows") || !result["rows"].is_array())
-    throw std::runtime_error("--from-json: '" + path + "' has no \"rows\" array (not an evaluate results.json)");
+    throw std::runtime_error(flag + ": '" + path + "' has no \"rows\" array (not an evaluate results.json)");
   return result;
 }
 
 // results.md in `out_dir`, and the same table on stdout.
-void write_markdown(const nlohmann::json& result, const std::string& out_dir) {
+void write_markdown(const nlohmann::json& result, const std::string& out_dir, bool print = true) {
   const std::string md = gw::evaluation_to_markdown(result);
   std::filesystem::create_directories(out_dir);
   gw::write_file_atomic(out_dir + "/results.md", md);
-  std::cout << md;
+  if (print) std::cout << md;
+}
+
+// The rows to run: those --rows selects and, resuming, those the earlier run finished (kept, not run
+// again), in the table's order, so the table grows to the union. A kept row the table no longer has is
+// dropped with a warning.
+std::vector<gw::EvaluationRow> rows_to_run(const std::string& rows_filter, const nlohmann::json& kept) {
+  const std::vector<gw::EvaluationRow> table = gw::paper_table(), selected = gw::select_rows(table, rows_filter);
+  std::vector<gw::EvaluationRow> out;
+  for (const gw::EvaluationRow& row : table) {
+    bool use = false;
+    for (const gw::EvaluationRow& s : selected) use = use || s.name == row.name;
+    for (const nlohmann::json& k : kept) use = use || k["name"] == row.name;
+    if (use) out.push_back(row);
+  }
+  for (const nlohmann::json& k : kept) {
+    bool known = false;
+    for (const gw::EvaluationRow& row : table) known = known || k["name"] == row.name;
+    if (!known) std::cerr << "[evaluate] --resume: row '" << k["name"].get<std::string>() << "' is no longer in the table: dropped\n";
+  }
+  return out;
 }
 
 }  // namespace
@@ -66,7 +88,12 @@ int main(int argc, char** argv) {
                  "were trained with)");
   app.add_option("--threads", o.threads, "episodes run in parallel");
   app.add_option("--rows", rows_filter, "only rows whose name contains one of these comma-separated texts (coronary,var1)");
-  app.add_option("--out", out_dir, "folder for results.md and results.json");
+  app.add_option("--out", out_dir, "folder for results.md and results.json (both rewritten after every row, so an "
+                 "interruption loses no finished row)");
+  bool resume = false;
+  app.add_flag("--resume", resume,
+               "keep the rows --out's results.json already holds (an interrupted run's, same settings) and run only "
+               "the others");
   std::string controllers = "policy,push-only,scripted-omega,scripted-omega-ccw";
   app.add_option("--reachability-seeds", o.reachability_seeds,
                  "probe targets no controller reached with 8 rotation schedules from this many seeds (0 = skip)")
@@ -113,9 +140,21 @@ int main(int argc, char** argv) {
                                     "' (expected policy, push-only, scripted-omega or scripted-omega-ccw)");
     if (o.controllers.empty()) throw std::invalid_argument("--controllers names no controller");
     if (!std::filesystem::exists(o.base_policy)) o.base_policy.clear();
-    const nlohmann::json result = gw::run_evaluation(gw::select_rows(gw::paper_table(), rows_filter), o);
+    const std::string results_path = out_dir + "/results.json";
+    if (resume && std::filesystem::exists(results_path)) {
+      o.finished_rows = gw::resumable_rows(read_results(results_path, "--resume"), o);
+      std::cerr << "[evaluate] --resume: " << o.finished_rows.size() << " finished row(s) in " << results_path
+                << " kept\n";
+    } else if (resume) {
+      std::cerr << "[evaluate] --resume: no " << results_path << " yet, every row runs\n";
+    }
     std::filesystem::create_directories(out_dir);
-    gw::write_file_atomic(out_dir + "/results.json", result.dump(2) + "\n");
+    o.on_row = [&](const nlohmann::json& so_far) {  // each finished row at once (atomic: never half a file)
+      gw::write_file_atomic(results_path, so_far.dump(2) + "\n");
+      write_markdown(so_far, out_dir, false);
+    };
+    const nlohmann::json result = gw::run_evaluation(rows_to_run(rows_filter, o.finished_rows), o);
+    gw::write_file_atomic(results_path, result.dump(2) + "\n");
     write_markdown(result, out_dir);
     return 0;
   } catch (const std::exception& e) {

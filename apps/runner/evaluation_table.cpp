@@ -1,5 +1,6 @@
 #include "apps/runner/evaluation_table.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -10,9 +11,11 @@
 #include <random>
 #include <set>
 #include <sstream>
+#include <unistd.h>
 
 #include "apps/runner/controller.hpp"
 #include "apps/runner/episode_batch.hpp"
+#include "apps/runner/evaluation_progress.hpp"
 #include "apps/runner/navigation_anatomy.hpp"
 #include "apps/runner/reachability.hpp"
 #include "apps/runner/success_statistics.hpp"
@@ -156,18 +159,79 @@ std::vector<Anatomy> load_row_anatomies(const EvaluationRow& row, const Evaluati
   return anatomies;
 }
 
+nlohmann::json evaluation_settings(const EvaluationOptions& o) {
+  return {{"policy", o.policy},
+          {"base_policy", o.base_policy},
+          {"seed", o.seed},
+          {"intermediate_target_mm", o.intermediate_target_mm},
+          {"push_mm_per_s", o.push_mm_per_s},
+          {"wire", o.wire_path},
+          {"centerlines", o.extract_centerlines ? "extracted (CGAL MCF)" : "ground truth"},
+          {"episode_scale", o.episode_scale},
+          {"reachability_seeds", o.reachability_seeds},
+          {"controllers", o.controllers}};
+}
+
+nlohmann::json resumable_rows(const nlohmann::json& previous, const EvaluationOptions& o) {
+  const nlohmann::json settings = previous.value("settings", nlohmann::json::object());
+  if (settings.contains("merged_from"))
+    throw std::invalid_argument("--resume: the results.json joins several runs (--from-json); only a run of its "
+                                "own can be resumed");
+  const nlohmann::json now = evaluation_settings(o);
+  for (const auto& [key, value] : now.items())
+    if (!settings.contains(key) || settings[key] != value)
+      throw std::invalid_argument("--resume: the earlier run's " + key + " was " +
+                                  (settings.contains(key) ? settings[key].dump() : std::string("not recorded")) +
+                                  ", this run's is " + value.dump() +
+                                  ": give the same settings, or another --out for a new table");
+  nlohmann::json rows = nlohmann::json::array();
+  for (const nlohmann::json& row : previous.value("rows", nlohmann::json::array()))
+    if (!row.contains("skipped")) rows.push_back(row);
+  return rows;
+}
+
 nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const EvaluationOptions& o) {
   // A bad wire file is the caller's error for every row alike: refused here, not skipped row by row.
   const WireParams wire = o.wire_path.empty() ? default_wire_params() : load_wire_params(o.wire_path);
-  nlohmann::json out_rows = nlohmann::json::array();
+  const nlohmann::json settings = evaluation_settings(o);
+  std::map<std::string, nlohmann::json> finished;  // by name: kept from an earlier run, then the rows run here
+  for (const nlohmann::json& row : o.finished_rows) finished[row["name"].get<std::string>()] = row;
+  auto row_episodes = [&](const EvaluationRow& row) {
+    return std::max(1, static_cast<int>(std::lround(row.episodes * o.episode_scale)));
+  };
+  auto row_policy = [&](const EvaluationRow& row) { return row.base_policy ? o.base_policy : o.policy; };
+  auto row_columns = [&](const EvaluationRow& row) {
+    return static_cast<int>(std::count_if(o.controllers.begin(), o.controllers.end(), [&](const std::string& kind) {
+      return kind != "policy" || !row_policy(row).empty();
+    }));
+  };
+  // The finished rows in the table's order: what the caller may write after each row.
+  auto table_so_far = [&] {
+    nlohmann::json out_rows = nlohmann::json::array();
+    for (const EvaluationRow& row : rows)
+      if (auto it = finished.find(row.name); it != finished.end()) out_rows.push_back(it->second);
+    return nlohmann::json{{"rows", out_rows}, {"settings", settings}};
+  };
+  int total = 0;
+  for (const EvaluationRow& row : rows)
+    if (!finished.count(row.name)) total += row_episodes(row) * row_columns(row);
+  ProgressMeter meter(total, o.progress ? stderr : nullptr, o.progress && isatty(fileno(stderr)));
+  const std::string of_rows = "/" + std::to_string(rows.size()) + " ";
+  int index = 0;
   for (const EvaluationRow& row : rows) {
+    const std::string label = "row " + std::to_string(++index) + of_rows + row.name;
+    if (finished.count(row.name)) {
+      if (o.progress) meter.line(label + ": kept from the earlier run");
+      continue;
+    }
     const auto start = std::chrono::steady_clock::now();
-    const int episodes = std::max(1, static_cast<int>(std::lround(row.episodes * o.episode_scale)));
+    const int episodes = row_episodes(row);
+    const int planned = episodes * row_columns(row), done_before = meter.done();
     nlohmann::json r = {{"name", row.name}, {"anatomies", row.anatomies}, {"episodes", episodes},
                         {"paper", row.paper_success}, {"paper_episodes", row.episodes},
                         {"results", nlohmann::json::object()},
                         {"notes", nlohmann::json::array()}};
-    const std::string policy = row.base_policy ? o.base_policy : o.policy;
+    const std::string policy = row_policy(row);
     try {
       const std::vector<Anatomy> anatomies = load_row_anatomies(row, o);
       TaskConfig base_config;
@@ -192,7 +256,9 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
         if (config.omega_plane != default_task.config.omega_plane)
           adapted = make_navigation_task(config, wire, anatomies);
         const NavigationTask& task = adapted ? *adapted : default_task;
-        const nlohmann::json summary = summarize_episodes(run_batch(task, requests, make, o.threads, trace));
+        const std::string where = label + ", " + kind + ": ";
+        auto progress = [&](int done, int of) { meter.episode_done(where + std::to_string(done) + "/" + std::to_string(of)); };
+        const nlohmann::json summary = summarize_episodes(run_batch(task, requests, make, o.threads, trace, progress));
         const std::string column = kind == "policy" ? "sac-policy" : kind;
         r["results"][column] = summary;
       }
@@ -201,19 +267,15 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
     } catch (const std::exception& e) {
       r["skipped"] = e.what();
     }
+    meter.drop(planned - (meter.done() - done_before));  // the episodes a skipped row did not run
     r["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (o.progress) std::fprintf(stderr, "[evaluate] %s: %.1f s\n", row.name.c_str(), r["wall_time_s"].get<double>());
-    out_rows.push_back(r);
+    if (o.progress)
+      meter.line(label + (r.contains("skipped") ? " skipped: " + r["skipped"].get<std::string>()
+                                                : " done in " + format_duration(r["wall_time_s"].get<double>())));
+    finished[row.name] = r;
+    if (o.on_row) o.on_row(table_so_far());
   }
-  return {{"rows", out_rows},
-          {"settings",
-           {{"policy", o.policy}, {"base_policy", o.base_policy}, {"seed", o.seed},
-            {"intermediate_target_mm", o.intermediate_target_mm},
-            {"push_mm_per_s", o.push_mm_per_s},
-            {"wire", o.wire_path},
-            {"centerlines", o.extract_centerlines ? "extracted (CGAL MCF)" : "ground truth"},
-            {"episode_scale", o.episode_scale},
-            {"reachability_seeds", o.reachability_seeds}}}};
+  return table_so_far();
 }
 
 nlohmann::json run_task_settings(const nlohmann::json& run) {

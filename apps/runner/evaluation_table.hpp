@@ -2,6 +2,7 @@
 // The paper's results table (Scarponi et al., section 3) on our anatomies: every row run with the
 // SAC policy and beside it the two baselines (push-only, scripted omega), next to the paper's figure.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -36,7 +37,14 @@ struct EvaluationOptions {
   double episode_scale = 1.0;         // multiply every row's episode count (quick looks: 0.1)
   std::uint64_t seed = 0;
   int threads = 1;
-  bool progress = false;              // a line per finished row on stderr
+  bool progress = false;              // stderr: episodes done with an ETA (in place on a terminal, else every
+                                      // 10 s) and a line per finished row
+  // Rows an earlier run finished (its results.json "rows", see resumable_rows): a row of the table
+  // whose name is here is kept as it is, not run again (evaluate --resume).
+  nlohmann::json finished_rows = nlohmann::json::array();
+  // Called after each row with the evaluation so far ({"rows": the finished rows in the table's order,
+  // "settings"}): evaluate writes it at once, so an interruption loses no finished row.
+  std::function<void(const nlohmann::json&)> on_row;
   // Targets that no controller of a row reached are probed with the rotation schedules
   // (reachability.hpp) from this many seeds each; 0 = do not probe.
   int reachability_seeds = 2;
@@ -50,13 +58,25 @@ struct EvaluationOptions {
 // Throws std::runtime_error naming an anatomy the index lacks or a mesh that cannot be loaded.
 std::vector<Anatomy> load_row_anatomies(const EvaluationRow& row, const EvaluationOptions& options);
 
-// Runs the rows and returns {"rows": [{name, episodes, paper, results: {controller: summary}, notes,
+// Runs the rows (those in options.finished_rows are taken from there) and returns {"rows": [{name, episodes, paper, results: {controller: summary}, notes,
 // reachability: [{anatomy, target, reachable, ...}] for the targets no controller reached, ceiling: {episodes,
 // reached, reached_by_a_controller, reached_only_by_a_schedule: [{anatomy, target, seed, schedule}],
 // reached_by_none: [{anatomy, target, seed}]} (each episode no column reached, re-run from the same start
 // with the rotation schedules; both only when reachability_seeds > 0)}], "settings": ...}. Rows whose
 // anatomy or policy is missing are kept with a "skipped" reason; a wire file that cannot be loaded throws.
 nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const EvaluationOptions& options);
+
+// The "settings" of a results.json run_evaluation writes with `options`: what its episodes depend on
+// (policy, base_policy, seed, intermediate_target_mm, push_mm_per_s, wire, centerlines, episode_scale,
+// reachability_seeds) and the controllers.
+nlohmann::json evaluation_settings(const EvaluationOptions& options);
+
+// The rows of an earlier results.json (`previous`) a run with `options` may keep instead of running
+// them again (evaluate --resume): every row except those with a "skipped" reason (they cost nothing
+// and may run now). Throws std::invalid_argument naming the first setting that differs from `options`
+// (another seed, policy, episode scale, controllers...) or a joined run (--from-json), since a table
+// mixing them would mean neither.
+nlohmann::json resumable_rows(const nlohmann::json& previous, const EvaluationOptions& options);
 
 // How the table names a target ("coronary T3") and an episode ("coronary T3 seed 7") in its cells,
 // failure modes and results.json, so that runs and their columns can be matched by these names.

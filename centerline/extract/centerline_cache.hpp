@@ -16,7 +16,7 @@
 namespace gw {
 
 // Bumped whenever the extraction changes its output.
-inline constexpr const char* kCenterlinePipelineVersion = "mcf-recentre-8-intake";
+inline constexpr const char* kCenterlinePipelineVersion = "mcf-recentre-9-open-sections";
 
 struct CacheOptions {
   bool enabled = true;

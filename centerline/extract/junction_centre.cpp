@@ -12,6 +12,17 @@
 namespace gw {
 namespace {
 
+// A side branch is recognised by its arms' directions (the two others nearly opposite, cos < -0.8)
+// or, off a curving vessel, by its radius: below this share of both others' while their cos < -0.5.
+constexpr double kSideRadiusShare = 0.8;
+constexpr double kCurvedParentCos = 0.0;
+// A clean tube found further out than this many radii is no guide to the axis at the junction
+// (the branch curves in between): the fixed window near the junction is used instead.
+constexpr double kCleanReach = 8.0;
+// Junctions closer than this many of the widest radius along the arm between them are two origins
+// on one wide vessel.
+constexpr double kCloseJunctions = 2.0;
+
 // A branch seen from the junction: its points and radii running away from it.
 struct Arm {
   size_t chain = 0;
@@ -36,10 +47,10 @@ Arm arm_of(const RefinedBranch& b, size_t chain, bool reversed) {
 // sections in a row with elongation < 1.12, at least half a radius out): the vessels
 // of a shallow-angle bifurcation share one lumen for several radii, and lines fitted
 // inside it would follow the merged lumen, not either axis. -1 when there is none in
-// the first 60% of the arm.
+// the first 60% of the arm and within kCleanReach radii.
 double clean_start(const Arm& a, const std::vector<double>& s, double r) {
   constexpr double kClean = 1.12;
-  for (size_t i = 0; i + 2 < a.points.size() && s[i] <= 0.6 * s.back(); ++i) {
+  for (size_t i = 0; i + 2 < a.points.size() && s[i] <= 0.6 * s.back() && s[i] <= kCleanReach * r; ++i) {
     if (s[i] < 0.5 * r) continue;
     if (a.elongation[i] < kClean && a.elongation[i + 1] < kClean && a.elongation[i + 2] < kClean) return s[i];
   }
@@ -67,6 +78,7 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
     std::vector<double> cut(arms.size(), 0.0);
     std::vector<Eigen::Vector3d> start(arms.size()), dir(arms.size()), mid(arms.size());
     std::vector<double> radius(arms.size(), 0.0);
+    std::vector<char> between_close(arms.size(), 0);  // the arm leads to a junction close by (below)
     double widest = 0.0;
     bool ok = true;
     for (size_t k = 0; k < arms.size() && ok; ++k) {
@@ -79,6 +91,15 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
       const double r = near[near.size() / 2];
       widest = std::max(widest, r);
       radius[k] = r;
+      // A short piece of a wide vessel between this junction and the next (closer than
+      // kCloseJunctions of its widest radius): both junction nodes sit off that vessel's axis on
+      // the side the branches leave, so the chain dips between them and a line fitted to part of
+      // it is tilted; the direction from junction to junction is the vessel's.
+      const SkeletonChain& c = tree.chains[arms[k].chain];
+      const int other = arms[k].reversed ? c.a : c.b;
+      const Eigen::Vector3d to_other = tree.nodes[other] - tree.nodes[v];
+      const double widest_along = *std::max_element(arms[k].radii.begin(), arms[k].radii.end());
+      between_close[k] = other != static_cast<int>(v) && degree[other] >= 3 && to_other.norm() < kCloseJunctions * widest_along;
       double s0 = clean_start(arms[k], s, r), s1 = s0 + 4.0 * r;
       if (s0 < 0) s0 = std::min(1.5 * r, 0.3 * s.back()), s1 = std::min(3.5 * r, 0.6 * s.back());
       s1 = std::min(s1, 0.8 * s.back());
@@ -92,6 +113,7 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
       }
       Eigen::Vector3d mean, d;
       fit_line(window, mean, d);  // d points away from the junction
+      if (between_close[k]) d = to_other.normalized();
       dir[k] = d;
       mid[k] = mean;
       start[k] = window.front();
@@ -121,8 +143,22 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
       for (size_t i = 0; i < 3; ++i)
         for (size_t j = i + 1; j < 3; ++j)
           if (dir[i].dot(dir[j]) < dir[bi].dot(dir[bj])) bi = i, bj = j;
+      // A much thinner arm is the side branch even where the vessel it leaves curves through the
+      // junction (an aortic arch, a bending trunk): its two arms are then less than opposite.
+      // An arm to a junction close by is the wide vessel itself (its chain hugs the wall between
+      // the two origins, so its measured radius says nothing): never the side branch.
+      auto side_radius = [&](size_t k) {
+        return between_close[k] ? std::numeric_limits<double>::infinity() : radius[k];
+      };
+      size_t thin = 0;
+      for (size_t k = 1; k < 3; ++k)
+        if (side_radius(k) < side_radius(thin)) thin = k;
+      const size_t ti = thin == 0 ? 1 : 0, tj = thin == 2 ? 1 : 2;
+      const bool thin_side = side_radius(thin) < kSideRadiusShare * std::min(side_radius(ti), side_radius(tj)) &&
+                             dir[ti].dot(dir[tj]) < kCurvedParentCos;
+      if (thin_side) bi = ti, bj = tj;
       const size_t side = 3 - bi - bj;
-      if (dir[bi].dot(dir[bj]) < -0.8) {
+      if (thin_side || dir[bi].dot(dir[bj]) < -0.8) {
         const Eigen::Vector3d P0 = start[bi], P1 = start[bj];
         const double L = (P1 - P0).norm();
         const Eigen::Vector3d T0 = -dir[bi] * L, T1 = dir[bj] * L;

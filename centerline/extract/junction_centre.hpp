@@ -17,8 +17,10 @@ namespace gw {
 // of the old one, in units of the widest arm radius), then replaces the part of each branch before its fitting window by a straight run from
 // the centre at `spacing`. `nodes` (junction positions, indexed like tree.nodes) and
 // `branches` (indexed like tree.chains, running from chain.a to chain.b) are updated.
-// A side branch off a vessel that goes on is traced back into the lumen it shares with that
-// vessel (merged_lumen_axis.hpp) before its axis is intersected with the vessel's.
+// A side branch off a vessel that goes on (the other two arms nearly opposite, or, where that
+// vessel curves through the junction, the side arm clearly the thinnest) is traced back into the
+// lumen it shares with that vessel (merged_lumen_axis.hpp) before its axis is intersected with the
+// vessel's.
 void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& nodes,
                         std::vector<RefinedBranch>& branches, const VesselWall& wall, double spacing,
                         double max_shift = 6.0);

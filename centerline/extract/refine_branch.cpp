@@ -5,23 +5,47 @@
 #include <limits>
 
 #include "centerline/extract/cross_section.hpp"
+#include "centerline/extract/open_cross_section.hpp"
 #include "centerline/extract/polyline_tools.hpp"
 #include "centerline/graph/centerline_graph.hpp"
 
 namespace gw {
 namespace {
 
+// A section that is no clean tube is re-centred on the circle of the wall around an opening
+// (open_cross_section.hpp) only on a chain between two junctions less than that circle's diameter
+// apart (a piece of a wider vessel between two branch origins, as on an aortic arch, not a vessel
+// of its own), and only when that circle's radius is at least kOffAxisRatio times the
+// point's distance to the wall and its centre at least half a radius to the side: the skeleton
+// is then grossly off-axis, whereas the merged lumen of an ordinary fork puts it about one child
+// radius from the wall, and a point near a cap is on the axis; those stay as they are. Rays reach
+// kOpenReach wall distances (across the wider vessel from a point near its wall).
+constexpr double kOffAxisRatio = 2.0;
+constexpr double kOpenReach = 20.0;
+
 // Per point: fitted radius where the cross-section is a tube, else NaN.
+// `open_below`: sections are also fitted around an opening (above) where that circle's radius
+// exceeds this (0: never).
 std::vector<double> tube_radii(const std::vector<Eigen::Vector3d>& p, const VesselWall& wall, int rays,
-                               std::vector<Eigen::Vector3d>* centres, std::vector<double>* elongation = nullptr) {
+                               std::vector<Eigen::Vector3d>* centres, std::vector<double>* elongation = nullptr,
+                               double open_below = 0.0) {
   const auto tangent = polyline_tangents(smooth_polyline(p, 4));
   std::vector<double> r(p.size(), std::nan(""));
   if (centres) *centres = p;
   if (elongation) elongation->assign(p.size(), std::numeric_limits<double>::infinity());
   for (size_t i = 0; i < p.size(); ++i) {
     const double near = wall.distance(p[i]);
-    const CrossSection cs = fit_cross_section(wall, p[i], tangent[i], 4.0 * near + 1e-9, rays);
-    if (!cs.tube) continue;
+    CrossSection cs = fit_cross_section(wall, p[i], tangent[i], 4.0 * near + 1e-9, rays);
+    if (!cs.tube) {
+      if (!(open_below > 0)) continue;
+      // A point far off the axis of a much wider vessel (the skeleton between two branch origins
+      // on an aortic arch runs along the arch's roof): the wall around the openings is one circle.
+      const CrossSection open = fit_open_cross_section(wall, p[i], tangent[i], kOpenReach * near + 1e-9);
+      if (!open.tube || open.radius <= open_below || open.radius < kOffAxisRatio * near ||
+          (open.centre - p[i]).norm() < 0.5 * open.radius)
+        continue;
+      cs = open;
+    }
     if (elongation) (*elongation)[i] = cs.elongation;
     r[i] = cs.radius;
     if (centres) (*centres)[i] = cs.centre;
@@ -86,9 +110,12 @@ RefinedBranch refine_branch(const std::vector<Eigen::Vector3d>& chain, bool free
   // of an outlet, where the axis may still curve), re-centre the extension too, and
   // finally run the last straight piece from the last clean section to the wall.
   const int passes = std::max(1, o.recentre_passes);
+  double length = 0.0;
+  for (size_t i = 1; i < p.size(); ++i) length += (p[i] - p[i - 1]).norm();
+  const double open_below = free_start || free_end ? 0.0 : 0.5 * length;
   for (int pass = 0; pass < passes + 1; ++pass) {
     std::vector<Eigen::Vector3d> centred;
-    r = tube_radii(p, wall, o.rays, &centred);
+    r = tube_radii(p, wall, o.rays, &centred, nullptr, open_below);
     for (size_t i = 1; i + 1 < p.size(); ++i) p[i] = centred[i];
     if (free_start) p.front() = centred.front();
     if (free_end) p.back() = centred.back();

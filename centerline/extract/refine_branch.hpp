@@ -22,7 +22,9 @@ struct RefinedBranch {
 
 // `chain` runs from its first to its last point. Interior points are moved onto the
 // centre of their cross-section wherever it is a clean tube (not near bifurcations or
-// caps). A free end (a terminal: inlet or target) is then extended straight along the
+// caps); on a chain between two junctions closer than the vessel's diameter (a wide vessel
+// between two branch origins, as on an aortic arch) also where the wall around the openings is
+// one circle far off the point (open_cross_section.hpp). A free end (a terminal: inlet or target) is then extended straight along the
 // branch to the wall, since the skeleton stops about a radius short of an outlet; a
 // bound end (a bifurcation centre) stays exactly where it is. Radii are the fitted
 // cross-section radii, interpolated along the branch where the section is not a tube.

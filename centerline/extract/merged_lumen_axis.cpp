@@ -1,4 +1,5 @@
 #include "centerline/extract/merged_lumen_axis.hpp"
+#include "centerline/extract/circle_fit.hpp"
 #include "centerline/extract/polyline_tools.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -57,16 +58,6 @@ bool fit_free_radius(const std::vector<Eigen::Vector2d>& hits, Eigen::Vector2d& 
   residual = 0.0;
   for (const auto& h : hits) residual = std::max(residual, std::abs((h - c).norm() - r));
   return c.allFinite() && r > 0;
-}
-
-// Angle (rad) the hits span around c: 2 pi minus the largest gap between consecutive angles.
-double arc_span(const std::vector<Eigen::Vector2d>& hits, const Eigen::Vector2d& c) {
-  std::vector<double> a;
-  for (const auto& h : hits) a.push_back(std::atan2(h.y() - c.y(), h.x() - c.x()));
-  std::sort(a.begin(), a.end());
-  double gap = a.front() + 2.0 * M_PI - a.back();
-  for (size_t i = 1; i < a.size(); ++i) gap = std::max(gap, a[i] - a[i - 1]);
-  return 2.0 * M_PI - gap;
 }
 
 }  // namespace

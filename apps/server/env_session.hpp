@@ -1,6 +1,6 @@
 #pragma once
 // One environment behind one connection: turns a request line of the JSON-lines protocol into a
-// reply line (design.md "Contracts"). No sockets here, so tests can drive it directly.
+// reply line (docs/architecture.md, "The socket protocol"). No sockets here, so tests can drive it directly.
 //   {"cmd":"spec"}                                   -> spaces, protocol and layout versions, anatomies
 //   {"cmd":"reset","seed":S,"options":{"anatomy":name|index,"target":id}}  -> obs, info
 //   {"cmd":"step","action":[a]}                      -> obs, reward, terminated, truncated, info

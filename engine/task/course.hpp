@@ -1,7 +1,7 @@
 #pragma once
 // The route to one target, prepared once per (anatomy, target) so that resetting an episode
 // costs nothing: the path polyline, the geometry of every bifurcation met on the way, and
-// the sequence of goals (one intermediate target per bifurcation, paper 2.2 / design.md "Trees").
+// the sequence of goals (one intermediate target per bifurcation, paper 2.2 / docs/architecture.md "Trees").
 #include <Eigen/Core>
 #include <vector>
 

@@ -7,7 +7,7 @@
 
 namespace gw {
 
-// When the policy's action is applied (design.md, "Trees").
+// When the policy's action is applied (docs/architecture.md, "Trees").
 enum class ControlMode {
   kAlways,             // every env step (training on single bifurcation patterns, paper 2.2.2)
   kNearBifurcation,    // only while the tip is within control_radius_mm of a bifurcation centre

@@ -1,7 +1,7 @@
 """Gymnasium environment backed by the C++ guidewire simulator (``guidewire-server``).
 
 By default the environment starts its own local server process (``--port 0``, it prints the port it
-got) and talks to it over a TCP socket with the newline-delimited JSON protocol of design.md; pass
+got) and talks to it over a TCP socket with the newline-delimited JSON protocol of docs/architecture.md ("The socket protocol"); pass
 ``host``/``port`` to use a server that is already running, e.g. on another machine.
 
     env = GuidewireEnv()                                   # own server, the 4 training anatomies

@@ -141,6 +141,13 @@ CenterlineGraph extract_centerline(const ClosedSurface& closed, const Centerline
       const int far = c.a == v ? c.b : c.a;
       if (visited[far]) continue;
       visited[far] = 1;
+      // A terminal chain that re-centring shrank to a stub (its junction moved onto the vessel axes
+      // and the chain was cut back to there) is a spur of the skeleton, not a vessel. Dropped only
+      // where the junction keeps two other children, so that it stays a bifurcation.
+      if (degree[far] == 1 && degree[v] >= 4 && polyline_length(refined[i].points) <
+          opt.spur_factor * *std::max_element(refined[i].radii.begin(), refined[i].radii.end())) {
+        continue;
+      }
       CenterlineBranch branch;
       branch.id = static_cast<int>(g.branches.size());
       branch.parent = arriving[v];

@@ -204,6 +204,23 @@ def test_segmentation_mesh_meets_the_accuracy_bar(extracted, case):
     assert seg.accurate(c), f"{case}: {c}"
 
 
+def test_no_stub_target_where_a_junction_was_recentred(tmp_path):
+    """At 0.35 mm the pl tree with open, flipped ends in metres left a skeleton spur at a junction
+    that survived the spur pruning but shrank to 0.8 mm once the junction was re-centred onto the
+    vessel axes: a sixth target on a 5-target tree. A terminal stub shorter than spur_factor (2) of
+    its radii, at a junction that keeps two other children, is dropped: the right tree."""
+    centerline = guidewire_nav.app_path("centerline")
+    if not centerline.is_file():
+        pytest.skip(f"centerline not built ({centerline}); set GW_BUILD_DIR")
+    e = seg.build_set(tmp_path / "set", voxel=0.35, only="pl_open_flipped_m", log=lambda *_: None)["anatomies"][0]
+    out = tmp_path / "extracted.json"
+    rc, err, _ = seg.run_centerline(tmp_path / e["mesh"], out, timeout=120)
+    assert rc == 0, err
+    c = seg.compare_to_truth(json.loads(out.read_text()), json.loads((tmp_path / e["truth"]).read_text()))
+    assert (c["targets"], c["bifurcations"]) == (c["true_targets"], c["true_bifurcations"]) == (5, 4), c
+    assert c["terminal_offset"] <= 2.0, c
+
+
 @pytest.mark.parametrize("case", ["pl_open_flipped_m", "arch2_open_nonmanifold"])
 def test_segmentation_mesh_navigates(seg_set, case, tmp_path):
     """Acceptance (issue 35 item 6): a repaired segmentation surface runs `navigate --target all` end to

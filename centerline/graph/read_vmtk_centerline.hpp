@@ -12,7 +12,7 @@
 //      inscribed sphere radius, targets numbered by number_targets. Units as in the file (VMTK
 //      keeps the surface's; the project expects mm).
 //      A file that 3D Slicer tagged SPACE=LPS (field data) is turned to RAS (x, y negated), as
-//      read_slicer_markups does with LPS markups: see README "Bring your own centerline".
+//      read_slicer_markups does with LPS markups (README, "On your own mesh").
 // Bad file: std::runtime_error "<path>: <problem>".
 #include <string>
 

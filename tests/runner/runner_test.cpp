@@ -283,7 +283,7 @@ TEST_CASE("a loss where the tip folded over first is told apart from an aimed on
 TEST_CASE("the deformed coronary's T3 fold-back: the shipped actor's caught tip folds over, the scripted rule "
           "passes",
           "[runner][policy][fold]") {
-  // README, "The deformed coronary's T3 folds back": seed 30 is one of the six table episodes where the actor,
+  // docs/results.md, "The deformed coronary's T3 folds back": seed 30 is one of the six table episodes where the actor,
   // aimed, turns a caught tip, the tip snaps back and the folded wire goes into the wrong branch.
   const std::string mesh = std::string(GW_SOURCE_DIR) + "/anatomies/test/coronary_deformed/coronary_deformed.stl";
   const gw::NavigationAnatomy nav = gw::load_navigation_anatomy(mesh);  // extracted, as evaluate does

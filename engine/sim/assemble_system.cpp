@@ -36,16 +36,18 @@ Vec6 held_velocity_change(const WireState& st, int h, double push, double rotate
   return dv;
 }
 
-Vec6 node_rhs(const WireModel& model, const WireState& st, int i, double dt) {
+// `inertia`: the node's rotational inertia tensor (per-axis model), or null for the paper's model
+// (rho J about every axis, model.rot_inertia[i]).
+Vec6 node_rhs(const WireModel& model, const WireState& st, int i, double dt, const Eigen::Matrix3d* inertia) {
   const double alpha = model.params.damping_mass;
   Vec6 r;
-  if (!model.params.per_axis_rotational_inertia) {
+  if (!inertia) {
     r << dt * st.external_force[i] - dt * alpha * model.mass[i] * st.v[i],
         dt * st.external_torque[i] - dt * alpha * model.rot_inertia[i] * st.w[i];
     return r;
   }
   // Per-axis tensor: Euler's equations in the world frame, I dw/dt = torque - w x (I w) (explicit).
-  const Eigen::Vector3d iw = node_rotational_inertia(model, i, st.q[i].toRotationMatrix()) * st.w[i];
+  const Eigen::Vector3d iw = *inertia * st.w[i];
   r << dt * st.external_force[i] - dt * alpha * model.mass[i] * st.v[i],
       dt * st.external_torque[i] - dt * alpha * iw - dt * st.w[i].cross(iw);
   return r;
@@ -73,11 +75,14 @@ void assemble_system(const WireModel& model, const WireState& st, double push, d
   for (int i = k; i < n; ++i) {
     Mat6& d = sys.a.diag[i - k];
     d.diagonal().head<3>().setConstant(mscale * model.mass[i]);
-    if (model.params.per_axis_rotational_inertia)
-      d.block<3, 3>(3, 3) = mscale * node_rotational_inertia(model, i, sys.rot[i]);
-    else
+    if (model.params.per_axis_rotational_inertia) {
+      const Eigen::Matrix3d inertia = node_rotational_inertia(model, i, sys.rot[i]);
+      d.block<3, 3>(3, 3) = mscale * inertia;
+      sys.rhs.segment<6>(6 * (i - k)) = node_rhs(model, st, i, dt, &inertia);
+    } else {
       d.diagonal().tail<3>().setConstant(mscale * model.rot_inertia[i]);
-    sys.rhs.segment<6>(6 * (i - k)) = node_rhs(model, st, i, dt);
+      sys.rhs.segment<6>(6 * (i - k)) = node_rhs(model, st, i, dt, nullptr);
+    }
   }
   const Vec6 held_dv = held_velocity_change(st, k - 1, push, rotate);
   ElementLinearisation lin;
@@ -117,7 +122,7 @@ void assemble_system_sparse(const WireModel& model, const WireState& st, double 
       for (int c = 0; c < 3; ++c)
         if (inertia(j, c) != 0) trip.emplace_back(r + 3 + j, r + 3 + c, mscale * inertia(j, c));
     }
-    rhs.segment<6>(r) += node_rhs(model, st, i, dt);
+    rhs.segment<6>(r) += node_rhs(model, st, i, dt, model.params.per_axis_rotational_inertia ? &inertia : nullptr);
   }
   const Vec6 held_dv = held_velocity_change(st, k - 1, push, rotate);
   BeamElementEval ev;

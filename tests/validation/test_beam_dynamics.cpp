@@ -75,6 +75,17 @@ double measured_omega(Vibration& v, int mode, double expected_omega, double peri
   return M_PI / half_period;
 }
 
+// Steps `v` free `steps` times; the energy each step reports.
+std::vector<double> step_energies(Vibration& v, int steps) {
+  std::vector<double> e;
+  for (int s = 0; s < steps; ++s) {
+    const StepReport rep = step(v.model, nullptr, Control{}, v.state);
+    REQUIRE(rep.ok);
+    e.push_back(rep.energy);
+  }
+  return e;
+}
+
 }  // namespace
 
 TEST_CASE("the first three bending frequencies of a clamped-free beam match beta_n L = 1.875, 4.694, 7.855",
@@ -119,12 +130,7 @@ TEST_CASE("undamped free vibration: energy decays exactly at the rate backward E
     const int per = static_cast<int>(std::round(period / h));
     // Mean energy over the first and the eleventh period (the energy reported mixes the start-of-step
     // elastic and end-of-step kinetic energy, so it wobbles within a period).
-    std::vector<double> e;
-    for (int s = 0; s < 11 * per; ++s) {
-      const StepReport rep = step(v.model, nullptr, Control{}, v.state);
-      REQUIRE(rep.ok);
-      e.push_back(rep.energy);
-    }
+    const std::vector<double> e = step_energies(v, 11 * per);
     double first = 0, last = 0;
     for (int s = 0; s < per; ++s) {
       first += e[s] / per;
@@ -156,12 +162,7 @@ TEST_CASE("damped free vibration: energy decays at the rate the Rayleigh model a
   const double h = v.model.h;
   const double c = p.damping_mass + p.damping_stiffness * omega * omega;
   const int per = static_cast<int>(std::round(2.0 * M_PI / omega / h));
-  std::vector<double> e;
-  for (int s = 0; s < 3 * per; ++s) {
-    const StepReport rep = step(v.model, nullptr, Control{}, v.state);
-    REQUIRE(rep.ok);
-    e.push_back(rep.energy);
-  }
+  const std::vector<double> e = step_energies(v, 3 * per);
   double second = 0, third = 0;
   for (int s = 0; s < per; ++s) {
     second += e[per + s];

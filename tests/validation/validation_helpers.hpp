@@ -17,19 +17,14 @@
 #include "engine/wire/beam_element.hpp"
 #include "engine/wire/wire_model.hpp"
 #include "engine/wire/wire_state.hpp"
+#include "../engine/mechanics_helpers.hpp"
 
 namespace gw::validation {
 
-// A uniform straight beam (no curved tip, body modulus everywhere) of `length_mm`, elements of
-// `element_mm`, no Rayleigh damping, one integration sub-step of at most `h` per step.
+// test::uniform_beam_params (a uniform straight beam of `length_mm`, elements of `element_mm`) with no
+// Rayleigh damping and one integration sub-step of at most `h` per step.
 inline WireParams beam_params(double length_mm, double element_mm, double h) {
-  WireParams p = default_wire_params();
-  p.length_mm = length_mm;
-  p.tip_length_mm = element_mm;
-  p.tip_curvature_per_mm = 0;
-  p.tip_young_modulus_kpa = p.young_modulus_kpa;
-  p.fine_region_mm = 0;
-  p.element_length_mm = element_mm;
+  WireParams p = test::uniform_beam_params(length_mm, element_mm);
   p.damping_mass = 0;
   p.damping_stiffness = 0;
   p.max_substep_s = h;

@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "centerline/extract/junction_centre.hpp"
+#include "centerline/extract/merge_close_junctions.hpp"
 #include "centerline/extract/mcf_skeleton.hpp"
 #include "centerline/extract/prepare_surface.hpp"
 #include "centerline/extract/refine_branch.hpp"
@@ -91,20 +92,29 @@ CenterlineGraph extract_centerline(const ClosedSurface& closed, const Centerline
   SkeletonCleanup cleanup;
   cleanup.spur_factor = opt.spur_factor;
   cleanup.merge_factor = opt.merge_factor;
-  const SkeletonTree tree =
+  SkeletonTree tree =
       clean_skeleton(raw, [&](const Eigen::Vector3d& p) { return wall.distance(p); }, caps, cleanup);
   if (tree.chains.empty()) throw std::runtime_error("the skeleton has no branch");
-  const std::vector<int> degree = tree.degree();
 
   // 6 (before 5: refinement does not depend on direction). Terminal ends are free.
   BranchRefinement refinement;
   refinement.spacing = opt.spacing;
   refinement.smoothing_iterations = opt.smoothing_iterations;
   std::vector<RefinedBranch> refined;
-  for (const auto& c : tree.chains)
-    refined.push_back(refine_branch(c.points, degree[c.a] == 1, degree[c.b] == 1, wall, refinement));
-  std::vector<Eigen::Vector3d> nodes = tree.nodes;
-  recentre_junctions(tree, nodes, refined, wall, opt.spacing);
+  std::vector<Eigen::Vector3d> nodes;
+  std::vector<int> degree;
+  const auto refine_and_recentre = [&] {
+    degree = tree.degree();
+    refined.clear();
+    for (const auto& c : tree.chains)
+      refined.push_back(refine_branch(c.points, degree[c.a] == 1, degree[c.b] == 1, wall, refinement));
+    nodes = tree.nodes;
+    recentre_junctions(tree, nodes, refined, wall, opt.spacing);
+  };
+  refine_and_recentre();
+  // A trifurcation is two skeleton junctions that re-centring puts within a radius of each other:
+  // one junction with three exits (merge_close_junctions.hpp).
+  while (merge_close_junctions(tree, nodes, refined, opt.merge_factor)) refine_and_recentre();
 
   // 5. Inlet: the terminal nearest the given point, else the one on the widest branch
   // (ties: lowest x, y, z, so the choice is deterministic).

@@ -5,6 +5,8 @@
 #include <limits>
 #include <numeric>
 
+#include "engine/scene/moving_wall.hpp"
+
 namespace gw {
 
 int contact_point_count(const WireModel& model) { return 2 * model.nodes - 1; }
@@ -27,14 +29,23 @@ namespace {
 const double kMidpointMinLength = 1.0;  // mm
 
 // Re-gathers the candidates of one point around `p` within `radius`, sorted by distance lower bound.
-void refresh(const VesselScene& scene, const Eigen::Vector3d& p, double radius, WallCandidates& c) {
-  triangles_near(scene, p, radius, c.triangles);
+// A moving wall: its shape at time t (the bounds then hold at t).
+void refresh(const VesselScene& scene, const Eigen::Vector3d& p, double radius, WallCandidates& c, double t) {
   c.centre = p;
   c.gathered = radius;
   c.closest = -1;
+  if (scene.motion) {
+    thread_local std::vector<double> spheres;
+    triangles_near_at(scene, t, p, radius, c.triangles, &spheres);
+    c.wall_time = t;
+    c.lower_bounds.resize(c.triangles.size());
+    for (std::size_t i = 0; i < c.triangles.size(); ++i) c.lower_bounds[i] = std::max(0.0, spheres[i]);
+  } else {
+    triangles_near(scene, p, radius, c.triangles);
+  }
   const std::size_t n = c.triangles.size();
   c.lower_bounds.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < n && !scene.motion; ++i) {
     const int f = c.triangles[i];
     const Eigen::Vector4d& sphere = scene.face_spheres[f];
     c.lower_bounds[i] = std::max(0.0, (p - sphere.head<3>()).norm() - sphere[3]);
@@ -50,7 +61,7 @@ void refresh(const VesselScene& scene, const Eigen::Vector3d& p, double radius, 
   }
   if (n == 0) {
     // No wall within `radius`: the point may move until it could be within reach of the wall.
-    c.clearance = wall_distance(scene, p).signed_distance;
+    c.clearance = scene.motion ? wall_distance_at(scene, t, p).signed_distance : wall_distance(scene, p).signed_distance;
     c.gathered = std::max(radius, std::abs(c.clearance));
   }
 }
@@ -58,7 +69,7 @@ void refresh(const VesselScene& scene, const Eigen::Vector3d& p, double radius, 
 }  // namespace
 
 WallDistance cached_wall_distance(const WireModel& model, const VesselScene& scene, WireState& state, int point,
-                                  const Eigen::Vector3d& p, double need, bool exact_to_cutoff) {
+                                  const Eigen::Vector3d& p, double need, bool exact_to_cutoff, double time) {
   const int count = contact_point_count(model);
   if (state.wall_cache_scene != &scene || static_cast<int>(state.wall_cache.size()) != count) {
     state.wall_cache.assign(count, WallCandidates{});
@@ -69,29 +80,37 @@ WallDistance cached_wall_distance(const WireModel& model, const VesselScene& sce
   // point that is more than the divergence margin outside. Farther triangles are not scanned.
   const double cutoff = std::max(need, model.params.divergence_margin_mm + model.radius_mm);
   // Deeper inside than needed by the Lipschitz bound: no scan (most points of a wire in a wide lumen).
-  const double deep = c.bound - (p - c.bound_point).norm();
+  // A moving wall: the bounds measured at earlier wall times lose the wall's largest travel since.
+  const WallMotion* motion = scene.motion.get();
+  const double t = motion ? (std::isnan(time) ? state.time : time) : 0.0;
+  double deep = c.bound - (p - c.bound_point).norm();
+  if (motion) deep -= wall_max_travel(*motion, c.bound_time, t);
   if (deep > (exact_to_cutoff ? cutoff : need)) {
     WallDistance far;
     far.signed_distance = deep;  // lower bound, > need
     return far;
   }
   double moved = c.gathered >= 0 ? (p - c.centre).norm() : 0;
+  if (motion && c.gathered >= 0) moved += wall_max_travel(*motion, c.wall_time, t);
   if (c.gathered < 0 || c.gathered - moved < need) {
-    refresh(scene, p, need + model.params.contact_slack_mm, c);
+    refresh(scene, p, need + model.params.contact_slack_mm, c, t);
     moved = 0;
   }
   if (c.triangles.empty()) {
-    if (c.clearance < 0) return wall_distance(scene, p);  // outside the vessel: always exact
+    if (c.clearance < 0) return motion ? wall_distance_at(scene, t, p) : wall_distance(scene, p);  // outside: exact
     WallDistance far;
     far.signed_distance = c.clearance - moved;  // lower bound, >= need
     c.bound_point = p;
     c.bound = far.signed_distance;
+    c.bound_time = t;
     return far;
   }
-  WallDistance wd = wall_distance_among(scene, p, c.triangles, cutoff, &c.lower_bounds, moved, &c.closest);
+  WallDistance wd = motion ? wall_distance_among_at(scene, t, p, c.triangles, cutoff, &c.lower_bounds, moved, &c.closest)
+                           : wall_distance_among(scene, p, c.triangles, cutoff, &c.lower_bounds, moved, &c.closest);
   if (wd.triangle < 0) wd.signed_distance = cutoff;  // nothing within the cutoff: well inside
   c.bound_point = p;
   c.bound = wd.signed_distance;  // exact, or (triangle < 0) a lower bound
+  c.bound_time = t;
   return wd;
 }
 
@@ -112,6 +131,7 @@ void detect_contacts(const WireModel& model, const VesselScene& scene, WireState
   int first_node = model.nodes, first_mid = model.nodes - 1;
   while (first_node > first_free && contact_point_active(model, state, first_node - 1)) --first_node;
   while (first_mid > first_free && contact_point_active(model, state, model.nodes + first_mid - 1)) --first_mid;
+  const double wall_travel = scene.motion ? wall_max_travel(*scene.motion, state.time, state.time + dt) : 0.0;
   auto visit = [&](int point) {
     ContactPoint c;
     c.point = point;
@@ -124,12 +144,15 @@ void detect_contacts(const WireModel& model, const VesselScene& scene, WireState
     }
     Eigen::Vector3d v = c.wa * v_free[c.node_a];
     if (c.node_b >= 0) v += c.wb * v_free[c.node_b];
-    // Swept test: the point is a candidate if its free motion this step could bring it within the margin.
-    const double reach = r + margin + dt * v.norm();
+    // Swept test: the point is a candidate if its free motion this step could bring it within the margin
+    // (or, a moving wall, the wall's own travel this step could).
+    double reach = r + margin + dt * v.norm();
+    if (scene.motion) reach += wall_travel;
     const Eigen::Vector3d p = contact_point_position(model, state.x, point);
     const WallDistance wd = cached_wall_distance(model, scene, state, point, p, reach);
     deepest = std::max(deepest, -wd.signed_distance);
     if (!(wd.signed_distance < reach) || wd.triangle < 0) return;
+    if (scene.motion) c.v_wall = wall_point_velocity(scene, wd.triangle, wd.closest, state.time, dt);
     c.n = wd.inward;
     c.t1 = c.n.unitOrthogonal();
     c.t2 = c.n.cross(c.t1);

@@ -3,9 +3,10 @@
 // Contact points are the free nodes and the midpoints of elements longer than 1 mm (so a 2 mm chord
 // cannot cut through a bend of the wall between two nodes); each becomes a unilateral constraint along the wall's inward
 // direction at the start of the step, with two friction directions. The constraint keeps the linearised
-// clearance gap + dt n.v >= 0 at the end of the step. Broad phase: FCL sphere-vs-BVH queries, cached per point
+// clearance gap + dt n.(v - v_wall) >= 0 at the end of the step (v_wall = 0 for a static wall). Broad phase: FCL sphere-vs-BVH queries, cached per point
 // (WireState::wall_cache) and redone only when the point has moved more than the cache slack.
 #include <Eigen/Core>
+#include <limits>
 #include <vector>
 
 #include "engine/scene/vessel_scene.hpp"
@@ -20,6 +21,9 @@ struct ContactPoint {
   Eigen::Vector3d n, t1, t2;    // n: into the lumen; t1, t2: tangent plane
   double gap = 0;               // wall clearance of the wire surface at the start of the step [mm]
   Eigen::Vector3d v_free;       // velocity of the point after the free (contact-less) motion [mm/s]
+  // A moving wall: the wall's mean velocity over the sub-step at the contact [mm/s]; the constraint and
+  // the friction act on the relative velocity v - v_wall (zero for a static wall).
+  Eigen::Vector3d v_wall = Eigen::Vector3d::Zero();
   // Angular velocity of the point after the free motion [rad/s] (interpolated like v_free); only read
   // with friction at the wire surface (ContactWorkspace::lever), filled by the caller then.
   Eigen::Vector3d w_free = Eigen::Vector3d::Zero();
@@ -40,8 +44,10 @@ bool contact_point_active(const WireModel& model, const WireState& state, int po
 // (triangle = -1): a point cannot get farther outside than that without first being seen within it.
 // Points known (by the last query's distance and how far they moved since) to be deeper than that are
 // answered without a scan.
+// A moving wall (scene.motion) is taken at `time` (NaN: state.time).
 WallDistance cached_wall_distance(const WireModel& model, const VesselScene& scene, WireState& state, int point,
-                                  const Eigen::Vector3d& p, double need, bool exact_to_cutoff = false);
+                                  const Eigen::Vector3d& p, double need, bool exact_to_cutoff = false,
+                                  double time = std::numeric_limits<double>::quiet_NaN());
 
 // Whether a wall normal measured at the middle of a contact point's motion may replace the one from the
 // start of the step (re-linearisation): only when both belong to the same side of the wall, i.e. turn by

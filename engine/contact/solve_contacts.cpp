@@ -199,7 +199,7 @@ ContactSolveResult solve_contact_impulses(const std::vector<ContactPoint>& conta
   for (int ci = 0; ci < m; ++ci) {
     const ContactPoint& cc = contacts[ci];
     ws.w_diag[ci] = compliance_block(contacts, ws, ci, ci);
-    const Eigen::Vector3d& vc = cc.v_free;
+    const Eigen::Vector3d vc = cc.v_free - cc.v_wall;  // relative to the wall (v_wall = 0: exactly v_free)
     // End-of-step normal velocity must keep the gap: gap / dt + n.(v_free + dv_c) >= 0.
     // A penetration (gap < 0) is pushed out over a few steps (Baumgarte factor), not in one: a full
     // one-step correction of a deep point throws soft parts of the wire across the vessel.

@@ -1,6 +1,8 @@
 #pragma once
-// The rigid vessel wall: the triangle mesh, per-face data for exact closest points and an FCL BVH
+// The vessel wall: the triangle mesh, per-face data for exact closest points and an FCL BVH
 // over it for the broad phase. Constant while stepping; copies share the BVH.
+// With `motion` (engine/scene/wall_motion.hpp) the mesh is the REST configuration of a moving wall and
+// the queries of engine/scene/moving_wall.hpp answer at a time t; without, the wall is rigid and static.
 // The lumen is the INSIDE of the closed, outward-oriented surface: the wire must stay inside.
 #include <Eigen/Core>
 #include <memory>
@@ -12,6 +14,7 @@
 namespace gw {
 
 struct VesselSceneBvh;  // FCL objects, hidden so FCL headers stay out of every includer
+struct WallMotion;
 
 struct VesselScene {
   TriangleMesh mesh;
@@ -23,6 +26,7 @@ struct VesselScene {
   std::vector<Eigen::Matrix3d> face_corners;  // columns a, b, c per face (contiguous)
   std::shared_ptr<const VesselSceneBvh> bvh;
   std::shared_ptr<const TriangleGrid> grid;   // range queries of the per-point candidate lists
+  std::shared_ptr<const WallMotion> motion;   // nullptr: a static wall (attach_wall_motion sets it)
 };
 
 // Builds the BVH. Throws std::runtime_error for an empty mesh, non-finite vertices, bad indices or a

@@ -135,7 +135,8 @@ StepReport substep(const WireModel& model, const VesselScene* scene, const Contr
         const Eigen::Vector3d mid = contact_point_position(model, state.x, c.point) + 0.5 * dt * v_end;
         const double need = model.radius_mm + model.params.contact_margin_mm + dt * v_end.norm();
         // Exact to the cutoff: a wall a little beyond `need` at mid-motion still gives this contact its normal.
-        const WallDistance wd = cached_wall_distance(model, *scene, state, c.point, mid, need, true);
+        // A moving wall is taken at mid-motion too.
+        const WallDistance wd = cached_wall_distance(model, *scene, state, c.point, mid, need, true, state.time + 0.5 * dt);
         if (wd.triangle < 0 || !same_wall_side(c.n, wd.inward)) continue;
         turned = std::max(turned, 1.0 - wd.inward.dot(c.n));
         c.n = wd.inward;

@@ -27,6 +27,9 @@ struct WallCandidates {
   // deeper inside than a query's cutoff needs no triangle scan (most of a wire in a wide lumen).
   Eigen::Vector3d bound_point = Eigen::Vector3d::Zero();
   double bound = -1e300;
+  // Moving walls (VesselScene::motion): the wall times the list (lower bounds, clearance) and `bound`
+  // were measured at; later queries take off the wall's largest travel since (wall_max_travel).
+  double wall_time = 0, bound_time = 0;
 };
 
 struct WireState {

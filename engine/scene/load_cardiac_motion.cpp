@@ -1,0 +1,57 @@
+// load_cardiac_motion (engine/scene/wall_motion.hpp).
+// Input: the path of a motion JSON file. Output: its CardiacMotion (missing keys keep their defaults).
+// Throws std::runtime_error "<file>: <problem>".
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <stdexcept>
+
+#include "engine/scene/wall_motion.hpp"
+
+namespace gw {
+
+CardiacMotion load_cardiac_motion(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open the motion file");
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": not valid JSON (" + e.what() + ")");
+  }
+  if (!j.is_object()) throw std::runtime_error(path + ": the motion file must hold a JSON object");
+  static const std::set<std::string> known = {
+      "heart_rate_bpm", "systole_fraction", "phase_offset",        "axis_origin",    "axis_direction",
+      "contraction_mm", "reference_radius_mm", "shortening_mm",    "reference_length_mm", "twist_deg_per_cm",
+      "rotation_deg",   "translation_mm",   "comment"};
+  for (const auto& item : j.items())
+    if (!known.count(item.key())) throw std::runtime_error(path + ": unknown key \"" + item.key() + "\"");
+  CardiacMotion m;
+  auto number = [&](const char* key, double& v) {
+    if (!j.contains(key)) return;
+    if (!j[key].is_number()) throw std::runtime_error(path + ": \"" + key + "\" must be a number");
+    v = j[key].get<double>();
+  };
+  auto vec3 = [&](const char* key, Eigen::Vector3d& v) {
+    if (!j.contains(key)) return;
+    const auto& a = j[key];
+    if (!a.is_array() || a.size() != 3 || !a[0].is_number() || !a[1].is_number() || !a[2].is_number())
+      throw std::runtime_error(path + ": \"" + key + "\" must be an array of three numbers");
+    v = Eigen::Vector3d(a[0].get<double>(), a[1].get<double>(), a[2].get<double>());
+  };
+  number("heart_rate_bpm", m.heart_rate_bpm);
+  number("systole_fraction", m.systole_fraction);
+  number("phase_offset", m.phase_offset);
+  vec3("axis_origin", m.axis_origin);
+  vec3("axis_direction", m.axis_direction);
+  number("contraction_mm", m.contraction_mm);
+  number("reference_radius_mm", m.reference_radius_mm);
+  number("shortening_mm", m.shortening_mm);
+  number("reference_length_mm", m.reference_length_mm);
+  number("twist_deg_per_cm", m.twist_deg_per_cm);
+  number("rotation_deg", m.rotation_deg);
+  vec3("translation_mm", m.translation_mm);
+  return m;
+}
+
+}  // namespace gw

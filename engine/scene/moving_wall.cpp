@@ -1,0 +1,232 @@
+// current_wall_vertex, wall_distance_among_at, triangles_near_at, wall_distance_at, wall_point_velocity
+// (engine/scene/moving_wall.hpp): the lazily evaluated current shape of a moving wall.
+#include "engine/scene/moving_wall.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "engine/scene/closest_point_triangle.hpp"
+
+namespace gw {
+
+namespace {
+
+// Current vertex positions and vertex normals of one (motion, time), computed on first use. Per thread,
+// so concurrent episodes never share it; a pure accelerator (the same values without it).
+struct CurrentWallCache {
+  long id = -1;
+  double t = std::numeric_limits<double>::quiet_NaN();
+  int epoch = 0;
+  std::vector<int> stamp, normal_stamp;
+  std::vector<Eigen::Vector3d> x, n;
+};
+
+CurrentWallCache& cache_for(const VesselScene& s, double t) {
+  thread_local CurrentWallCache c;
+  const WallMotion& m = *s.motion;
+  if (c.id != m.id || !(c.t == t)) {
+    if (static_cast<int>(c.stamp.size()) != m.vertices || c.epoch == std::numeric_limits<int>::max()) {
+      c.stamp.assign(m.vertices, 0);
+      c.normal_stamp.assign(m.vertices, 0);
+      c.x.resize(m.vertices);
+      c.n.resize(m.vertices);
+      c.epoch = 0;
+    }
+    ++c.epoch;
+    c.id = m.id;
+    c.t = t;
+  }
+  return c;
+}
+
+const Eigen::Vector3d& vertex(CurrentWallCache& c, const VesselScene& s, int i) {
+  if (c.stamp[i] != c.epoch) {
+    c.x[i] = wall_vertex_position(*s.motion, s.mesh, i, c.t);
+    c.stamp[i] = c.epoch;
+  }
+  return c.x[i];
+}
+
+// The current corners, unit normal and bounding sphere of face f (make_vessel_scene's formulas).
+struct Face {
+  Eigen::Vector3d a, b, c, n, centre;
+  double radius;
+};
+
+Face face(CurrentWallCache& cache, const VesselScene& s, int f) {
+  Face r;
+  r.a = vertex(cache, s, s.mesh.F(f, 0));
+  r.b = vertex(cache, s, s.mesh.F(f, 1));
+  r.c = vertex(cache, s, s.mesh.F(f, 2));
+  const Eigen::Vector3d n = (r.b - r.a).cross(r.c - r.a);
+  const double len = n.norm();
+  r.n = len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
+  r.centre = (r.a + r.b + r.c) / 3.0;
+  r.radius = std::max({(r.a - r.centre).norm(), (r.b - r.centre).norm(), (r.c - r.centre).norm()});
+  return r;
+}
+
+// Angle-weighted vertex normal of the current shape (as make_vessel_scene computes it).
+const Eigen::Vector3d& vertex_normal(CurrentWallCache& c, const VesselScene& s, int i) {
+  if (c.normal_stamp[i] == c.epoch) return c.n[i];
+  const WallMotion& m = *s.motion;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (int k = m.vertex_face_begin[i]; k < m.vertex_face_begin[i + 1]; ++k) {
+    const int f = m.vertex_face[k], corner = m.vertex_corner[k];
+    const Face fd = face(c, s, f);
+    const Eigen::Vector3d p0 = vertex(c, s, s.mesh.F(f, corner)), p1 = vertex(c, s, s.mesh.F(f, (corner + 1) % 3)),
+                          p2 = vertex(c, s, s.mesh.F(f, (corner + 2) % 3));
+    const Eigen::Vector3d e1 = p1 - p0, e2 = p2 - p0;
+    const double den = e1.norm() * e2.norm();
+    const double angle = den > 0 ? std::acos(std::clamp(e1.dot(e2) / den, -1.0, 1.0)) : 0.0;
+    sum += angle * fd.n;
+  }
+  const double len = sum.norm();
+  if (len > 0) sum /= len;
+  c.n[i] = sum;
+  c.normal_stamp[i] = c.epoch;
+  return c.n[i];
+}
+
+}  // namespace
+
+Eigen::Vector3d current_wall_vertex(const VesselScene& scene, int vertex_index, double t) {
+  return vertex(cache_for(scene, t), scene, vertex_index);
+}
+
+WallDistance wall_distance_among_at(const VesselScene& scene, double t, const Eigen::Vector3d& p,
+                                    const std::vector<int>& triangles, double cutoff,
+                                    const std::vector<double>* lower_bounds, double moved, int* hint) {
+  CurrentWallCache& cache = cache_for(scene, t);
+  WallDistance best;
+  best.signed_distance = std::numeric_limits<double>::infinity();
+  double best_d2 = cutoff * cutoff;
+  double best_cos = -1;
+  Eigen::Vector3d best_diff = Eigen::Vector3d::Zero(), best_n = Eigen::Vector3d::Zero();
+  int best_position = -1;
+  auto consider = [&](int position) {
+    const int f = triangles[position];
+    const Face fd = face(cache, scene, f);
+    const double dc = (p - fd.centre).norm() - fd.radius;
+    if (dc > 0 && dc * dc > best_d2 * (1 + 1e-12)) return;
+    int region = 0;
+    const Eigen::Vector3d c = closest_point_on_triangle(p, fd.a, fd.b, fd.c, region);
+    const Eigen::Vector3d diff = p - c;
+    const double d2 = diff.squaredNorm();
+    const double cosv = d2 > 0 ? std::abs(diff.dot(fd.n)) / std::sqrt(d2) : 1.0;
+    bool better;
+    if (best.triangle < 0)
+      better = d2 <= cutoff * cutoff;
+    else if (std::abs(d2 - best_d2) <= 1e-12 * (1 + best_d2))
+      better = cosv > best_cos;
+    else
+      better = d2 < best_d2;
+    if (better) {
+      best_d2 = d2;
+      best_cos = cosv;
+      best.triangle = f;
+      best_position = position;
+      best.closest = c;
+      best_diff = diff;
+      best_n = fd.n;
+    }
+  };
+  const int first = hint ? *hint : -1;
+  if (first >= 0 && first < static_cast<int>(triangles.size())) consider(first);
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    if (lower_bounds) {
+      const double lb = (*lower_bounds)[i] - moved;
+      if (lb > 0 && lb * lb > best_d2 * (1 + 1e-9) + 1e-18) break;  // sorted: nothing later is closer
+    }
+    if (static_cast<int>(i) != first) consider(static_cast<int>(i));
+  }
+  if (hint) *hint = best_position;
+  if (best.triangle < 0) return best;
+  const int f = best.triangle;
+  const Eigen::Vector3d n = best_n;
+  const double dist = std::sqrt(best_d2);
+  best.signed_distance = best_diff.dot(n) <= 0 ? dist : -dist;
+  const Eigen::Vector3d a = vertex(cache, scene, scene.mesh.F(f, 0)), b = vertex(cache, scene, scene.mesh.F(f, 1)),
+                        c = vertex(cache, scene, scene.mesh.F(f, 2));
+  const Eigen::Vector3d v0 = b - a, v1 = c - a, v2 = best.closest - a;
+  const double d00 = v0.dot(v0), d01 = v0.dot(v1), d11 = v1.dot(v1), d20 = v2.dot(v0), d21 = v2.dot(v1);
+  const double den = d00 * d11 - d01 * d01;
+  Eigen::Vector3d smooth = n;
+  if (den > 0) {
+    const double wb = (d11 * d20 - d01 * d21) / den, wc = (d00 * d21 - d01 * d20) / den;
+    smooth = (1 - wb - wc) * vertex_normal(cache, scene, scene.mesh.F(f, 0)) +
+             wb * vertex_normal(cache, scene, scene.mesh.F(f, 1)) + wc * vertex_normal(cache, scene, scene.mesh.F(f, 2));
+    if (smooth.norm() > 1e-9 && smooth.dot(n) > 0) smooth.normalize();
+    else smooth = n;
+  }
+  best.inward = -smooth;
+  return best;
+}
+
+void triangles_near_at(const VesselScene& scene, double t, const Eigen::Vector3d& p, double radius,
+                       std::vector<int>& out, std::vector<double>* sphere_distances) {
+  Eigen::Vector3d centre;
+  double rest_radius = 0;
+  rest_query_ball(*scene.motion, p, radius, t, centre, rest_radius);
+  grid_candidates(*scene.grid, centre, rest_radius, out);
+  CurrentWallCache& cache = cache_for(scene, t);
+  if (sphere_distances) sphere_distances->clear();
+  std::size_t kept = 0;
+  for (const int f : out) {
+    const Eigen::Vector4d& rest = scene.face_spheres[f];
+    if ((centre - rest.head<3>()).norm() - rest[3] > rest_radius) continue;  // cannot come near p
+    const Face fd = face(cache, scene, f);
+    const double d = (p - fd.centre).norm() - fd.radius;
+    if (d > radius) continue;
+    out[kept++] = f;
+    if (sphere_distances) sphere_distances->push_back(d);
+  }
+  out.resize(kept);
+}
+
+WallDistance wall_distance_at(const VesselScene& scene, double t, const Eigen::Vector3d& p) {
+  // An upper bound of the current distance: the current distance to the triangle nearest to p's
+  // pre-image on the rest mesh; then every triangle whose current bounding sphere is that near.
+  Eigen::Vector3d centre;
+  double unused = 0;
+  rest_query_ball(*scene.motion, p, 0, t, centre, unused);
+  int tri = -1;
+  nearest_triangle(scene, centre, tri);
+  double upper = std::numeric_limits<double>::infinity();
+  if (tri >= 0) {
+    CurrentWallCache& cache = cache_for(scene, t);
+    const Face fd = face(cache, scene, tri);
+    int region = 0;
+    upper = (p - closest_point_on_triangle(p, fd.a, fd.b, fd.c, region)).norm();
+  }
+  if (!std::isfinite(upper)) upper = 1e6;
+  std::vector<int> cand;
+  triangles_near_at(scene, t, p, upper + 1e-6 + 1e-9 * (1 + upper), cand);
+  return wall_distance_among_at(scene, t, p, cand, upper + 1e-3 + 1e-6 * upper);
+}
+
+Eigen::Vector3d wall_point_velocity(const VesselScene& scene, int triangle, const Eigen::Vector3d& closest, double t,
+                                    double h) {
+  CurrentWallCache& cache = cache_for(scene, t);
+  const Eigen::Vector3d a = vertex(cache, scene, scene.mesh.F(triangle, 0)),
+                        b = vertex(cache, scene, scene.mesh.F(triangle, 1)),
+                        c = vertex(cache, scene, scene.mesh.F(triangle, 2));
+  const Eigen::Vector3d v0 = b - a, v1 = c - a, v2 = closest - a;
+  const double d00 = v0.dot(v0), d01 = v0.dot(v1), d11 = v1.dot(v1), d20 = v2.dot(v0), d21 = v2.dot(v1);
+  const double den = d00 * d11 - d01 * d01;
+  double wb = 1.0 / 3, wc = 1.0 / 3;
+  if (den > 0) {
+    wb = (d11 * d20 - d01 * d21) / den;
+    wc = (d00 * d21 - d01 * d20) / den;
+  }
+  const WallMotion& m = *scene.motion;
+  // The end positions are evaluated directly: the per-thread cache holds time t.
+  const Eigen::Vector3d a1 = wall_vertex_position(m, scene.mesh, scene.mesh.F(triangle, 0), t + h),
+                        b1 = wall_vertex_position(m, scene.mesh, scene.mesh.F(triangle, 1), t + h),
+                        c1 = wall_vertex_position(m, scene.mesh, scene.mesh.F(triangle, 2), t + h);
+  return ((1 - wb - wc) * (a1 - a) + wb * (b1 - b) + wc * (c1 - c)) / h;
+}
+
+}  // namespace gw

@@ -1,0 +1,112 @@
+#pragma once
+// The moving vessel wall (issue 36): a time-varying surface x_i(t) = X_i + D_i(t) over the scene's
+// rest mesh (vertex X_i, same triangles), constant like the rest of the model (like mjModel); the time
+// is the wire state's (WireState::time). Attached to a VesselScene (VesselScene::motion); a scene
+// without motion is today's rigid static wall, stepped by exactly the same code.
+//
+// Sources of D (WallMotionKind):
+//   rigid    D(t) = velocity t + amplitude sin(2 pi phase(t))              (tests: a carried/shaken tube)
+//   cardiac  D(X, s) with s = cardiac_activation(phase(t)) in [0, 1], the map of the anatomy generator
+//            (centerline/vessel_tree/deformation.hpp) plus a rotation and a translation:
+//              y = X - c, h = y.a, y_r = y - h a,  theta = s (twist h + rotation)
+//              x = c + R_a(theta) (1 - s rc) y_r + (1 - s as) h a + s T
+//            rc = contraction_mm / reference radius, as = shortening_mm / reference length
+//   phases   N surfaces of the same vertex order at phases j / N (4D CT), linearly interpolated in phase.
+// phase(t) = frac(phase_offset + t * heart_rate_bpm / 60), so 0 bpm freezes the wall at phase_offset.
+// Cardiac waveform (cardiac_activation), with systole fraction S (default 1/3 of the cycle):
+//   s = (1 - cos(pi phase / S)) / 2                     for phase < S   (systole: 0 -> 1)
+//   s = (1 + cos(pi (phase - S) / (1 - S))) / 2         for phase >= S  (diastole: 1 -> 0)
+// C1 at both joins (zero rate at end-diastole and end-systole); s = 1 is end-systole.
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/mesh/triangle_mesh.hpp"
+
+namespace gw {
+
+enum class WallMotionKind { rigid, cardiac, phases };
+
+// The parametric cardiac motion as written in a motion JSON file (load_cardiac_motion), amplitudes in mm
+// at end-systole (s = 1).
+struct CardiacMotion {
+  double heart_rate_bpm = 60;
+  double systole_fraction = 1.0 / 3.0;
+  double phase_offset = 0;                                    // phase at t = 0 (0 = end-diastole)
+  Eigen::Vector3d axis_origin = Eigen::Vector3d::Zero();      // heart centre c [mm]
+  Eigen::Vector3d axis_direction = Eigen::Vector3d::UnitZ();  // long axis a (normalised)
+  double contraction_mm = 0;       // radial displacement towards the axis at reference_radius_mm
+  double reference_radius_mm = 0;  // 0: the mesh's largest distance from the axis
+  double shortening_mm = 0;        // axial displacement towards the plane h = 0 at reference_length_mm
+  double reference_length_mm = 0;  // 0: the mesh's largest |h|
+  double twist_deg_per_cm = 0;     // torsion: rotation about a growing with h
+  double rotation_deg = 0;         // rotation about the axis, uniform
+  Eigen::Vector3d translation_mm = Eigen::Vector3d::Zero();
+};
+
+struct WallMotion {
+  WallMotionKind kind = WallMotionKind::rigid;
+  double heart_rate_bpm = 0;
+  double systole_fraction = 1.0 / 3.0;
+  double phase_offset = 0;
+  // rigid
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();   // [mm/s]
+  Eigen::Vector3d amplitude = Eigen::Vector3d::Zero();  // [mm]
+  // cardiac (see the header comment)
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero(), axis = Eigen::Vector3d::UnitZ();
+  double contraction = 0, shortening = 0, twist_rad_per_mm = 0, rotation_rad = 0;
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+  double travel_per_activation = 0;  // max over vertices of the bound B_i: |x_i(s1) - x_i(s0)| <= |s1 - s0| B_i
+  double lipschitz_per_activation = 0;  // |D(X) - D(Y)| <= s L |X - Y| inside the cylinder below
+  double radius_limit = 0, height_limit = 0;  // cylinder around the axis holding every vertex
+  // phases: per frame, the displacement of every vertex from the rest mesh
+  std::vector<Eigen::MatrixX3d> frames;
+  std::vector<double> frame_reach;  // max |D| per frame
+  std::vector<double> frame_step;   // max vertex travel from frame j to frame j + 1 (cyclic)
+  // Rest mesh data for the lazily evaluated current geometry (finish_wall_motion).
+  int vertices = 0;
+  std::vector<int> vertex_face_begin;  // CSR: faces around each vertex, ascending, with the corner
+  std::vector<int> vertex_face, vertex_corner;
+  double max_edge_mm = 0;              // longest rest edge
+  long id = 0;                         // unique per constructed motion (keys the per-thread vertex cache)
+};
+
+// Cycle phase in [0, 1) at time t.
+double cardiac_phase(const WallMotion& m, double t);
+
+// The waveform above: activation s in [0, 1] at `phase` with the given systole fraction (0, 1).
+double cardiac_activation(double phase, double systole_fraction);
+
+// Motion constructors; each checks its inputs (std::invalid_argument) and fills the rest mesh data.
+WallMotion rigid_wall_motion(const TriangleMesh& rest, const Eigen::Vector3d& velocity_mm_per_s,
+                             const Eigen::Vector3d& amplitude_mm, double heart_rate_bpm, double phase_offset = 0);
+WallMotion cardiac_wall_motion(const TriangleMesh& rest, const CardiacMotion& params);
+// `surfaces`: N >= 2 vertex matrices, the same vertex count and order as `rest`, at phases j / N.
+WallMotion phase_wall_motion(const TriangleMesh& rest, const std::vector<Eigen::MatrixX3d>& surfaces,
+                             double heart_rate_bpm, double phase_offset = 0);
+
+// A motion JSON file: {"heart_rate_bpm": 72, "systole_fraction": 0.33, "axis_origin": [x, y, z],
+// "axis_direction": [..], "contraction_mm": 2, "shortening_mm": 1, "twist_deg_per_cm": 3,
+// "rotation_deg": 4, "translation_mm": [..], ...} (the CardiacMotion fields; missing ones keep their
+// defaults). Throws std::runtime_error "<file>: <problem>" for an unreadable file, an unknown key or a
+// bad value.
+CardiacMotion load_cardiac_motion(const std::string& path);
+
+// Current position of rest vertex `vertex` at time t (computed as X + D, so exactly X when D = 0).
+Eigen::Vector3d wall_vertex_position(const WallMotion& m, const TriangleMesh& rest, int vertex, double t);
+
+// The field at an arbitrary rest point X (rigid and cardiac; false for phases, which only know vertices).
+bool wall_field_position(const WallMotion& m, const Eigen::Vector3d& X, double t, Eigen::Vector3d& x);
+
+// Upper bounds over all vertices of |D_i(t)| and of |x_i(t1) - x_i(t0)| (a little above, for rounding).
+double wall_max_displacement(const WallMotion& m, double t);
+double wall_max_travel(const WallMotion& m, double t0, double t1);
+
+// A ball of the REST configuration holding every rest triangle whose current (time t) triangle comes
+// within r of p: through the field's inverse (p pulled back by fixed-point iteration, the radius grown
+// by the field's Lipschitz bound) where the field allows, else centre p and radius r + max |D|.
+void rest_query_ball(const WallMotion& m, const Eigen::Vector3d& p, double r, double t, Eigen::Vector3d& centre,
+                     double& radius);
+
+}  // namespace gw

@@ -86,6 +86,8 @@ int main(int argc, char** argv) {
                  "constant insertion speed at the proximal end, mm/s (the shipped policy was trained at 10)");
   app.add_option("--wire", o.wire_path, "guidewire parameter JSON (default: the 0.014\" coronary wire the policies "
                  "were trained with)");
+  std::string junctions = "separate";
+  app.add_option("--junctions", junctions, "how a junction's wrong branches enter omega: separate (the paper's task, every table row) or combined (k-way junctions and closely spaced forks aimed at together, layout obs/4; docs/junctions.md)");
   app.add_option("--threads", o.threads, "episodes run in parallel");
   app.add_option("--rows", rows_filter, "only rows whose name contains one of these comma-separated texts (coronary,var1)");
   app.add_option("--out", out_dir, "folder for results.md and results.json (both rewritten after every row, so an "
@@ -132,6 +134,7 @@ int main(int argc, char** argv) {
     if (centerlines != "extract" && centerlines != "truth")
       throw std::invalid_argument("--centerlines must be 'extract' or 'truth', got '" + centerlines + "'");
     o.extract_centerlines = centerlines == "extract";
+    o.junctions = gw::parse_junction_model(junctions);
     o.progress = true;
     o.controllers = gw::split_commas(controllers);
     for (const std::string& c : o.controllers)

@@ -65,6 +65,8 @@ int main(int argc, char** argv) {
                  "20 mm past it)");
   app.add_option("--push-speed", push_mm_per_s,
                  "constant insertion speed at the proximal end, mm/s (the shipped policy was trained at 10)");
+  std::string junctions = "separate";
+  app.add_option("--junctions", junctions, "how a junction's wrong branches enter omega: separate (the paper's task, every table row) or combined (k-way junctions and closely spaced forks aimed at together, layout obs/4; docs/junctions.md)");
   app.add_option("--threads", threads, "episodes run in parallel");
   app.add_option("--out", out_dir, "write trajectories (JSON, VTK .vtp) and biplane PNGs here");
   app.add_flag("--json", json, "print one JSON summary on stdout");
@@ -101,6 +103,7 @@ int main(int argc, char** argv) {
     // Fail on the policy before the simulation starts: a missing or mismatched file is a user error.
     auto make_controller = [&] { return gw::make_controller(controller_kind, policy); };
     gw::TaskConfig config;
+    config.junctions = gw::parse_junction_model(junctions);
     make_controller()->adapt(config);  // an actor trained on the paper's omega gets the paper's omega
     config.intermediate_target_mm = intermediate_target_mm;
     config.push_mm_per_s = push_mm_per_s;  // make_navigation_task refuses a speed that is not > 0

@@ -34,6 +34,9 @@ class PolicyController final : public Controller {
   void adapt(TaskConfig& config) const override {
     config.omega_plane = layout_.omega_plane;
     config.omega_side = layout_.omega_side;
+    // An obs/4 actor needs combined junctions; an obs/3 one runs with either (the entries mean the same
+    // on two-way forks), as the user set it.
+    if (layout_.junctions == JunctionModel::kCombined) config.junctions = JunctionModel::kCombined;
   }
   double act(const Observation& obs) override {
     for (int i = 0; i < size_; ++i) obs_[i] = static_cast<float>(obs[static_cast<std::size_t>(i)]);
@@ -44,7 +47,7 @@ class PolicyController final : public Controller {
  private:
   std::string name_ = "sac-policy";
   ActorMLP actor_;
-  TaskConfig layout_;  // only omega_plane and omega_side are read: the actor's observation layout
+  TaskConfig layout_;  // only omega_plane, omega_side and junctions are read: the actor's observation layout
   int size_ = 0;
   Eigen::VectorXf obs_, action_;
 };

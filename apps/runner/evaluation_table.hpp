@@ -17,7 +17,8 @@ struct EvaluationRow {
   std::string name;                   // e.g. "coronary-like"
   std::vector<std::string> anatomies; // anatomy names in anatomies/index.json; episodes spread evenly
   int episodes = 50;
-  double paper_success = 0.0;         // the paper's success rate for this case, in [0, 1]
+  double paper_success = 0.0;         // the paper's success rate for this case, in [0, 1]; < 0: a row the
+                                      // paper did not have (the junction rows, issue 41)
   bool base_policy = false;           // sensitivity rows: the policy trained on sensitivity/base only
 };
 
@@ -51,6 +52,7 @@ struct EvaluationOptions {
   double intermediate_target_mm = TaskConfig{}.intermediate_target_mm;  // trees (task_config.hpp)
   double push_mm_per_s = TaskConfig{}.push_mm_per_s;                    // insertion speed (task_config.hpp)
   std::string wire_path;                                                // wire parameter JSON ("" = the 0.014" wire)
+  JunctionModel junctions = JunctionModel::kSeparate;  // --junctions (task_config.hpp; issue 41)
 };
 
 // A row's anatomies as the table runs them: centerlines extracted (or the truth when

@@ -15,6 +15,32 @@ Eigen::Vector3d child_direction(const Polyline& child, const Eigen::Vector3d& ce
   return n > 1e-9 ? Eigen::Vector3d(d / n) : child.tangents.front();
 }
 
+// The unit wrong direction w_p of child `wrong` seen from bifurcation `cb` (its centre, correct direction c
+// and omega's plane normal): w itself (paper) or w - c (approach plane), projected on the plane; zero
+// when parallel to the normal.
+Eigen::Vector3d wrong_in_plane(const CourseBifurcation& cb, const Polyline& wrong, const TaskConfig& config) {
+  const Eigen::Vector3d wd = child_direction(wrong, cb.centre, config.branch_direction_mm);
+  const bool paper = config.omega_plane == OmegaPlane::kCorrectBranch;
+  const Eigen::Vector3d& n = cb.omega_normal;
+  const Eigen::Vector3d away = paper ? wd : Eigen::Vector3d(wd - cb.correct_direction);
+  Eigen::Vector3d wp = away - away.dot(n) * n;
+  const double len = wp.norm();
+  return len > 1e-6 ? Eigen::Vector3d(wp / len) : Eigen::Vector3d::Zero();
+}
+
+// Median radius of a branch over its first 8 mm (the junction's own bulge is one or two points of it).
+double radius_after_origin(const CenterlineBranch& branch) {
+  std::vector<double> r;
+  double arc = 0.0;
+  for (size_t i = 0; i < branch.radii.size() && arc <= 8.0; ++i) {
+    r.push_back(branch.radii[i]);
+    if (i + 1 < branch.points.size()) arc += (branch.points[i + 1] - branch.points[i]).norm();
+  }
+  if (r.empty()) return 0.0;
+  std::nth_element(r.begin(), r.begin() + static_cast<long>(r.size() / 2), r.end());
+  return r[r.size() / 2];
+}
+
 }  // namespace
 
 Course make_course(const CenterlineGraph& graph, const std::vector<Polyline>& branch_lines, int target_id,
@@ -45,21 +71,27 @@ Course make_course(const CenterlineGraph& graph, const std::vector<Polyline>& br
     const Eigen::Vector3d before = polyline_point(course.line, std::max(0.0, cb.arc - config.branch_direction_mm));
     const Eigen::Vector3d approach = cb.centre - before;
     cb.approach_direction = approach.norm() > 1e-9 ? Eigen::Vector3d(approach.normalized()) : c;
-    const bool paper = config.omega_plane == OmegaPlane::kCorrectBranch;
-    cb.omega_normal = paper ? c : cb.approach_direction;
-    const Eigen::Vector3d& n = cb.omega_normal;
+    cb.omega_normal = config.omega_plane == OmegaPlane::kCorrectBranch ? c : cb.approach_direction;
+    // Paper: w itself. Approach plane: from the correct towards the wrong branch, as the rolled tip sees it.
     for (int w : pb.wrong_children) {
-      const Eigen::Vector3d wd = child_direction(branch_lines.at(static_cast<size_t>(w)), cb.centre,
-                                                 config.branch_direction_mm);
-      // Paper: w itself. Approach plane: from the correct towards the wrong branch, as the rolled tip sees it.
-      const Eigen::Vector3d away = paper ? wd : Eigen::Vector3d(wd - c);
-      Eigen::Vector3d wp = away - away.dot(n) * n;
-      const double len = wp.norm();
-      wp = len > 1e-6 ? Eigen::Vector3d(wp / len) : Eigen::Vector3d::Zero();
       cb.wrong_branches.push_back(w);
-      cb.wrong_in_plane.push_back(wp);
+      cb.wrong_in_plane.push_back(wrong_in_plane(cb, branch_lines.at(static_cast<size_t>(w)), config));
     }
     course.bifurcations.push_back(std::move(cb));
+  }
+  // Closely spaced forks (JunctionModel::kCombined): a bifurcation also aims away from the wrong children
+  // of those that follow within close_junction_diameters diameters of the vessel between them.
+  if (config.junctions == JunctionModel::kCombined) {
+    for (size_t k = 0; k < course.bifurcations.size(); ++k) {
+      const double diameter =
+          2.0 * radius_after_origin(graph.branches.at(static_cast<size_t>(path.bifurcations[k].correct_child)));
+      CourseBifurcation& cb = course.bifurcations[k];
+      for (size_t j = k + 1; j < course.bifurcations.size(); ++j) {
+        if (course.bifurcations[j].arc - cb.arc >= config.close_junction_diameters * diameter) break;
+        for (int w : path.bifurcations[j].wrong_children)
+          cb.wrong_in_plane.push_back(wrong_in_plane(cb, branch_lines.at(static_cast<size_t>(w)), config));
+      }
+    }
   }
 
   const size_t nb = course.bifurcations.size();

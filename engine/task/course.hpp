@@ -22,7 +22,8 @@ struct CourseBifurcation {
   Eigen::Vector3d omega_normal = Eigen::Vector3d::UnitX();  // normal of omega's plane: c or p (TaskConfig)
   std::vector<Eigen::Vector3d> wrong_in_plane;     // w_p: unit wrong directions in omega's plane: w (or w - c
                                                    // for OmegaPlane::kApproach) projected on it; zero when
-                                                   // parallel to the normal
+                                                   // parallel to the normal; with JunctionModel::kCombined also those of
+                                                   // the close bifurcations that follow (after this one's own)
 };
 
 struct Course {

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "engine/sim/step.hpp"
+#include "engine/task/bifurcation_omega.hpp"
 #include "engine/task/reward.hpp"
 
 namespace gw {
@@ -109,14 +110,9 @@ void observe(const NavigationTask& task, EpisodeState& s, bool first) {
     const Eigen::Vector3d kappa = curvature_from_tangents(
         s.samples.tangent[0], s.samples.tangent[kTipSampleCount - 1], (kTipSampleCount - 1) * c.tip_sample_spacing_mm);
     const double rest = task.wire.params.tip_curvature_per_mm;
-    omega = -1.0;
-    for (const Eigen::Vector3d& wp : b.wrong_in_plane) {
-      const double w = wrong_branch_alignment(kappa, b.omega_normal, wp, rest);
-      if (w < omega) continue;
-      omega = w;  // the side of the same (most dangerous) wrong branch
-      side = wrong_branch_side(kappa, b.omega_normal, wp, rest);
-    }
-    if (b.wrong_in_plane.empty()) omega = 0.0;
+    const OmegaReading reading = bifurcation_omega(b, kappa, rest, c.junctions);
+    omega = reading.omega;
+    side = reading.side;
   }
   o[obs_index::kOmega] = omega;
   o[obs_index::kOmegaSide] = side;

@@ -45,6 +45,8 @@ void check_task_config(const TaskConfig& c) {
   require(c.random_start_margin_mm >= 0, "random_start_margin_mm", ">= 0");
   require(c.roll_disturbance_probability == 0 || c.max_rotation_rad_per_s > 0, "max_rotation_rad_per_s",
           "> 0 when roll_disturbance_probability > 0");
+  require(c.close_junction_diameters >= 0 && std::isfinite(c.close_junction_diameters), "close_junction_diameters",
+          ">= 0");
 }
 
 ControlMode parse_control_mode(const std::string& text) {
@@ -71,6 +73,16 @@ OmegaPlane parse_omega_plane(const std::string& text) {
 
 const char* omega_plane_name(OmegaPlane plane) {
   return plane == OmegaPlane::kCorrectBranch ? "correct_branch" : "approach";
+}
+
+JunctionModel parse_junction_model(const std::string& text) {
+  if (text == "separate") return JunctionModel::kSeparate;
+  if (text == "combined") return JunctionModel::kCombined;
+  throw std::invalid_argument("junction model '" + text + "' is not one of separate, combined");
+}
+
+const char* junction_model_name(JunctionModel model) {
+  return model == JunctionModel::kSeparate ? "separate" : "combined";
 }
 
 }  // namespace gw

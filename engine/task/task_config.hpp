@@ -14,6 +14,17 @@ enum class ControlMode {
   kAuto,               // kAlways when the path has at most one bifurcation, else kNearBifurcation
 };
 
+// How the wrong branches of a junction enter omega (observation.hpp; issue 41, docs/junctions.md).
+enum class JunctionModel {
+  kSeparate,  // each bifurcation on its own; with several wrong children omega is the largest (the most
+              // dangerous) one. The paper's task and every row of the results table
+  kCombined,  // a bifurcation also counts the wrong children of the bifurcations that follow it along the
+              // course within close_junction_diameters vessel diameters (closely spaced forks), and omega
+              // is measured against the mean of the wrong directions (a k-way junction: the tip aims
+              // away from all of them, reaching -1 where the max could not). Identical to kSeparate on a
+              // two-way fork with no fork close behind it
+};
+
 // The plane omega is measured in (observation.hpp, omega).
 enum class OmegaPlane {
   kCorrectBranch,  // paper 2.2.3: tip curvature and wrong direction w projected on the plane normal to the
@@ -86,6 +97,11 @@ struct TaskConfig {
   // the tip 13 mm before the centre at omega -0.8, it rolled to +0.5 and took the wrong branch).
   double random_start_probability = 0.0;
   double random_start_margin_mm = 8.0;
+  // --- Junctions beyond the two-way fork (issue 41; JunctionModel above) ---
+  JunctionModel junctions = JunctionModel::kSeparate;
+  double close_junction_diameters = 2.0;  // kCombined: forks closer than this many diameters of the vessel
+                                          // between them (the correct child's radius over its first 8 mm)
+                                          // are aimed at together; the issue's "one to two diameters"
 };
 
 // Throws std::invalid_argument naming the first field out of range.
@@ -94,6 +110,10 @@ void check_task_config(const TaskConfig& config);
 // "always" | "near_bifurcation" | "auto"; throws std::invalid_argument for anything else.
 ControlMode parse_control_mode(const std::string& text);
 const char* control_mode_name(ControlMode mode);
+
+// "separate" | "combined"; throws std::invalid_argument for anything else.
+JunctionModel parse_junction_model(const std::string& text);
+const char* junction_model_name(JunctionModel model);
 
 // "correct_branch" | "approach"; throws std::invalid_argument for anything else.
 OmegaPlane parse_omega_plane(const std::string& text);

@@ -21,7 +21,8 @@ int main(int argc, char** argv) {
   CLI::App app{"Guidewire navigation environment server (JSON lines over TCP)"};
   gw::ServerOptions options;
   std::string anatomies = "train", index = gw::default_anatomy_index(), wire_json, control_mode = "auto",
-              omega_plane = gw::omega_plane_name(gw::TaskConfig{}.omega_plane);
+              omega_plane = gw::omega_plane_name(gw::TaskConfig{}.omega_plane),
+              junctions = gw::junction_model_name(gw::TaskConfig{}.junctions);
   gw::TaskConfig config;
   app.add_option("--port", options.port, "TCP port; 0 picks a free one (printed as the first stdout line)")->required();
   app.add_option("--host", options.host, "address to listen on")->capture_default_str();
@@ -38,6 +39,10 @@ int main(int argc, char** argv) {
   app.add_flag("--omega-side", config.omega_side,
                "also observe omega's sine, on which side of the wrong branch the tip bends (layout obs/3; "
                "needs --omega-plane approach)");
+  app.add_option("--junctions", junctions,
+                 "how a junction's wrong branches enter omega: separate (the paper's) or combined (k-way junctions and "
+                 "closely spaced forks aimed at together; with --omega-side: layout obs/4, docs/junctions.md)")
+      ->capture_default_str();
   app.add_option("--reward-omega-centre", config.reward.omega_centre,
                  "centre of the reward's omega sigmoid (paper Eq. 3: 0.1)")
       ->capture_default_str();
@@ -64,6 +69,7 @@ int main(int argc, char** argv) {
   try {
     config.control_mode = gw::parse_control_mode(control_mode);
     config.omega_plane = gw::parse_omega_plane(omega_plane);
+    config.junctions = gw::parse_junction_model(junctions);
     gw::observation_layout(config);  // refuses omega_side in the paper's plane, naming why
     const gw::WireParams wire = wire_json.empty() ? gw::default_wire_params() : gw::load_wire_params(wire_json);
     const gw::NavigationTask task = gw::make_navigation_task(config, wire, gw::load_indexed_anatomies(anatomies, index));

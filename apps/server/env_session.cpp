@@ -85,6 +85,7 @@ std::string spec_json(const NavigationTask& task) {
               {"control_mode", control_mode_name(c.control_mode)},
               {"omega_plane", omega_plane_name(c.omega_plane)},
               {"omega_side", c.omega_side},
+              {"junctions", junction_model_name(c.junctions)},
               {"reward", {{"omega_centre", c.reward.omega_centre}, {"omega_slope", c.reward.omega_slope}}},
               {"roll_disturbance", {{"probability", c.roll_disturbance_probability},
                                     {"min_rad", c.roll_disturbance_min_rad},

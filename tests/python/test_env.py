@@ -254,3 +254,22 @@ def test_omega_side_adds_a_twelfth_entry_and_changes_nothing_else(server_bin):
     finally:
         plain.close()
         side.close()
+
+
+def test_combined_junctions_are_layout_obs4_and_change_nothing_on_a_two_way_fork(server_bin):
+    # obs/4 = obs/3 with combined junctions (docs/junctions.md): on a single Y fork every entry is the same.
+    side = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1}, server_args=["--omega-side"])
+    combined = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1},
+                            server_args=["--omega-side", "--junctions", "combined"])
+    try:
+        assert combined.spec_reply["obs_layout"] == "guidewire-nav/obs/4"
+        assert combined.spec_reply["task"]["junctions"] == "combined"
+        a, _ = side.reset(seed=5)
+        b, _ = combined.reset(seed=5)
+        for _ in range(40):
+            a, *_ = side.step(np.array([-0.5], dtype=np.float32))
+            b, *_ = combined.step(np.array([-0.5], dtype=np.float32))
+            assert np.array_equal(a, b)
+    finally:
+        side.close()
+        combined.close()

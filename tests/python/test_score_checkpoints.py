@@ -53,3 +53,6 @@ def test_a_runs_layout_follows_its_settings():
     assert score_checkpoints.run_layout({"omega_plane": "approach", "omega_side": True}) == "guidewire-nav/obs/3"
     assert "--omega-side" in server_args(Settings(omega_side=True))
     assert "--omega-side" not in server_args(Settings())
+    assert score_checkpoints.run_layout({"omega_side": True, "junctions": "combined"}) == "guidewire-nav/obs/4"
+    args = server_args(Settings(junctions="combined"))
+    assert args[args.index("--junctions") + 1] == "combined"

@@ -40,8 +40,9 @@ import numpy as np
 import guidewire_nav
 
 PROTOCOL = "guidewire-nav/protocol/1"
-# obs/1 and obs/2: 11 values, omega's plane differs; obs/3: obs/2 and omega's sine (12 values)
-OBS_LAYOUTS = ("guidewire-nav/obs/1", "guidewire-nav/obs/2", "guidewire-nav/obs/3")
+# obs/1 and obs/2: 11 values, omega's plane differs; obs/3: obs/2 and omega's sine (12 values); obs/4: obs/3 with
+# combined junctions (server_args=["--omega-side", "--junctions", "combined"]; docs/junctions.md)
+OBS_LAYOUTS = ("guidewire-nav/obs/1", "guidewire-nav/obs/2", "guidewire-nav/obs/3", "guidewire-nav/obs/4")
 
 
 class ServerError(RuntimeError):

@@ -41,7 +41,7 @@ VALIDATION = [
 def run_layout(settings: dict) -> str:
     """The observation layout a run's settings.json trained on (observation.hpp)."""
     if settings.get("omega_side", False):
-        return "guidewire-nav/obs/3"
+        return "guidewire-nav/obs/4" if settings.get("junctions", "separate") == "combined" else "guidewire-nav/obs/3"
     return {"approach": "guidewire-nav/obs/2", "correct_branch": "guidewire-nav/obs/1"}[settings.get("omega_plane", "approach")]
 
 

@@ -46,6 +46,8 @@ class Settings:
     omega_plane: str = arg("approach", "omega's plane: approach (obs/2) or correct_branch (paper, obs/1)")
     omega_side: bool = arg(False, "also observe omega's sine (obs/3, approach plane only): which way the rotation "
                                   "carries the bend towards -1 (engine/task/observation.hpp says why)")
+    junctions: str = arg("separate", "how a junction's wrong branches enter omega: separate (the paper's) or combined "
+                                     "(k-way junctions and close forks; with --omega-side: obs/4, docs/junctions.md)")
     reward_omega_centre: float = arg(0.1, "centre of the reward sigmoid 2/(1+exp(slope(omega-centre)))-1; paper "
                                           "Eq. 3: 0.1 (engine/task/reward.hpp says why to change)")
     reward_omega_slope: float = arg(5.0, "slope of the reward sigmoid; paper Eq. 3: 5")
@@ -127,7 +129,8 @@ def git_commit() -> str:
 def server_args(s: Settings) -> list[str]:
     return ["--omega-plane", s.omega_plane, "--reward-omega-centre", repr(s.reward_omega_centre),
             "--reward-omega-slope", repr(s.reward_omega_slope), "--push-speed", repr(s.push_speed),
-            "--roll-disturbance", repr(s.roll_disturbance), "--random-start", repr(s.random_start)] + (["--omega-side"] if s.omega_side else [])
+            "--roll-disturbance", repr(s.roll_disturbance), "--random-start", repr(s.random_start),
+            "--junctions", s.junctions] + (["--omega-side"] if s.omega_side else [])
 
 
 def make_env_fn(s: Settings, rank: int, eval_env: bool = False):

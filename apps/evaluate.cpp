@@ -86,6 +86,10 @@ int main(int argc, char** argv) {
                  "constant insertion speed at the proximal end, mm/s (the shipped policy was trained at 10)");
   app.add_option("--wire", o.wire_path, "guidewire parameter JSON (default: the 0.014\" coronary wire the policies "
                  "were trained with)");
+  app.add_option("--recovery", o.recovery_attempts,
+                 "pull back and retry after a wrong branch or a stall, at most K times (docs/recovery.md); the strict "
+                 "columns are the same episodes' first end, the \"with recovery\" figures the whole procedure's")
+      ->check(CLI::NonNegativeNumber);
   std::string junctions = "separate";
   app.add_option("--junctions", junctions, "how a junction's wrong branches enter omega: separate (the paper's task, every table row) or combined (k-way junctions and closely spaced forks aimed at together, layout obs/4; docs/junctions.md)");
   app.add_option("--threads", o.threads, "episodes run in parallel");

@@ -65,6 +65,11 @@ int main(int argc, char** argv) {
                  "20 mm past it)");
   app.add_option("--push-speed", push_mm_per_s,
                  "constant insertion speed at the proximal end, mm/s (the shipped policy was trained at 10)");
+  int recovery = 0;
+  app.add_option("--recovery", recovery,
+                 "pull back and retry after a wrong branch or a stall, at most K times (docs/recovery.md); the "
+                 "outcome stays the strict episode's, the procedure's is under \"recovery\"")
+      ->check(CLI::NonNegativeNumber);
   std::string junctions = "separate";
   app.add_option("--junctions", junctions, "how a junction's wrong branches enter omega: separate (the paper's task, every table row) or combined (k-way junctions and closely spaced forks aimed at together, layout obs/4; docs/junctions.md)");
   app.add_option("--threads", threads, "episodes run in parallel");
@@ -107,6 +112,7 @@ int main(int argc, char** argv) {
     make_controller()->adapt(config);  // an actor trained on the paper's omega gets the paper's omega
     config.intermediate_target_mm = intermediate_target_mm;
     config.push_mm_per_s = push_mm_per_s;  // make_navigation_task refuses a speed that is not > 0
+    config.recovery_attempts = recovery;
 
     const gw::WireParams wire = wire_path.empty() ? gw::default_wire_params() : gw::load_wire_params(wire_path);
     const gw::NavigationTask task = gw::make_navigation_task(config, wire, {nav.anatomy});
@@ -141,6 +147,7 @@ int main(int argc, char** argv) {
     if (!nav.intake_report.empty()) summary["intake"] = nlohmann::json::parse(nav.intake_report);
     summary["intermediate_target_mm"] = intermediate_target_mm;
     summary["push_mm_per_s"] = push_mm_per_s;
+    if (recovery > 0) summary["recovery_attempts"] = recovery;
     summary["wall_time_s"] = wall;
     if (!out_dir.empty()) {
       // The PNG's own summary line names anatomy, target, controller and (for one episode) the seed; this
@@ -162,7 +169,12 @@ int main(int argc, char** argv) {
         const gw::EpisodeTrace& t = traces[k];
         std::cout << "episode " << k << ": target " << t.target_id << ", seed " << t.seed << " -> " << t.outcome;
         if (!t.detail.empty()) std::cout << " (" << t.detail << ")";
-        std::cout << ", " << (t.time_s.size() - 1) << " steps, " << t.time_s.back() << " s simulated\n";
+        const int end = gw::strict_end(t);
+        std::cout << ", " << end << " steps, " << t.time_s[static_cast<std::size_t>(end)] << " s simulated";
+        if (t.recovery_attempts_allowed > 0)
+          std::cout << "; with recovery -> " << t.recovery_outcome << " after " << t.recovery_attempts_used
+                    << " pull-back(s), " << t.time_s.back() << " s simulated";
+        std::cout << "\n";
       }
       std::cout << summary["successes"].get<int>() << "/" << traces.size() << " reached the target ("
                 << 100.0 * summary["success_rate"].get<double>() << "%) in " << wall << " s\n";

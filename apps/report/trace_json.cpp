@@ -66,6 +66,19 @@ std::string trace_to_json(const EpisodeTrace& t, int indent) {
     }
   }
   if (!t.goal.empty()) frames["goal"] = t.goal;
+  auto per_frame = [&](const char* key, const std::vector<double>& v) {
+    if (v.empty()) return;
+    frames[key] = json::array();
+    for (double x : v) frames[key].push_back(number(x));
+  };
+  per_frame("wall_force_peak_node_mN", t.wall_force_peak_node_mN);
+  per_frame("wall_force_peak_total_mN", t.wall_force_peak_total_mN);
+  per_frame("wall_force_mean_total_mN", t.wall_force_mean_total_mN);
+  per_frame("tip_force_mN", t.tip_force_mN);
+  if (!t.retracting.empty()) {
+    frames["retracting"] = json::array();
+    for (bool r : t.retracting) frames["retracting"].push_back(r);
+  }
   json shapes = json::array();
   for (std::size_t s = 0; s < t.wire_shapes.size(); ++s) {
     json shape;
@@ -83,7 +96,7 @@ std::string trace_to_json(const EpisodeTrace& t, int indent) {
   }
   json j;
   j["schema"] = kTrajectorySchema;
-  j["units"] = {{"length", "mm"}, {"time", "s"}};
+  j["units"] = {{"length", "mm"}, {"time", "s"}, {"force", "mN"}};
   j["anatomy"] = t.anatomy;
   j["controller"] = t.controller;
   j["target_id"] = t.target_id;
@@ -92,6 +105,12 @@ std::string trace_to_json(const EpisodeTrace& t, int indent) {
   j["detail"] = t.detail;
   if (!std::isnan(t.omega_at_loss)) j["omega_at_loss"] = t.omega_at_loss;
   j["num_frames"] = t.time_s.size();
+  if (t.strict_end_frame >= 0) j["strict_end_frame"] = t.strict_end_frame;
+  if (t.recovery_attempts_allowed > 0)
+    j["recovery"] = {{"attempts_allowed", t.recovery_attempts_allowed},
+                     {"attempts_used", t.recovery_attempts_used},
+                     {"outcome", t.recovery_outcome},
+                     {"detail", t.recovery_detail}};
   if (!t.observation_names.empty()) j["observation_names"] = t.observation_names;
   j["frames"] = std::move(frames);
   j["wire_shapes"] = std::move(shapes);
@@ -134,6 +153,24 @@ EpisodeTrace trace_from_json(const std::string& text, const std::string& origin)
       }
     }
     if (frames.contains("goal")) t.goal = array_field(frames, "goal").get<std::vector<int>>();
+    auto read_per_frame = [&](const char* key, std::vector<double>& v) {
+      if (frames.contains(key))
+        for (const auto& x : array_field(frames, key)) v.push_back(read_number(x));
+    };
+    read_per_frame("wall_force_peak_node_mN", t.wall_force_peak_node_mN);
+    read_per_frame("wall_force_peak_total_mN", t.wall_force_peak_total_mN);
+    read_per_frame("wall_force_mean_total_mN", t.wall_force_mean_total_mN);
+    read_per_frame("tip_force_mN", t.tip_force_mN);
+    if (frames.contains("retracting"))
+      for (const auto& v : array_field(frames, "retracting")) t.retracting.push_back(v.get<bool>());
+    if (j.contains("strict_end_frame")) t.strict_end_frame = j["strict_end_frame"].get<int>();
+    if (j.contains("recovery")) {
+      const json& r = j["recovery"];
+      t.recovery_attempts_allowed = field(r, "attempts_allowed").get<int>();
+      t.recovery_attempts_used = field(r, "attempts_used").get<int>();
+      t.recovery_outcome = field(r, "outcome").get<std::string>();
+      t.recovery_detail = field(r, "detail").get<std::string>();
+    }
     bool frames_known = true;
     for (const auto& shape : array_field(j, "wire_shapes")) {
       std::vector<Eigen::Vector3d> points;

@@ -25,6 +25,18 @@ void check_trace(const EpisodeTrace& t, const std::string& what) {
              std::to_string(t.observation_names.size()) + " observation names");
   }
   if (!t.goal.empty()) same(t.goal.size(), "goal");
+  if (!t.wall_force_peak_node_mN.empty()) same(t.wall_force_peak_node_mN.size(), "wall_force_peak_node_mN");
+  if (!t.wall_force_peak_total_mN.empty()) same(t.wall_force_peak_total_mN.size(), "wall_force_peak_total_mN");
+  if (!t.wall_force_mean_total_mN.empty()) same(t.wall_force_mean_total_mN.size(), "wall_force_mean_total_mN");
+  if (!t.tip_force_mN.empty()) same(t.tip_force_mN.size(), "tip_force_mN");
+  if (!t.retracting.empty()) same(t.retracting.size(), "retracting");
+  if (t.strict_end_frame < -1 || (t.strict_end_frame >= 0 && static_cast<std::size_t>(t.strict_end_frame) >= n))
+    fail("strict_end_frame " + std::to_string(t.strict_end_frame) + " is outside -1.." + std::to_string(n) + "-1");
+  if (t.recovery_attempts_allowed < 0 || t.recovery_attempts_used < 0)
+    fail("recovery attempts must be >= 0");
+  if (t.recovery_attempts_allowed > 0 &&
+      std::find(kTraceOutcomes.begin(), kTraceOutcomes.end(), t.recovery_outcome) == kTraceOutcomes.end())
+    fail("recovery outcome '" + t.recovery_outcome + "' is not a trace outcome");
   if (std::find(kTraceOutcomes.begin(), kTraceOutcomes.end(), t.outcome) == kTraceOutcomes.end()) {
     std::string valid;
     for (const auto& o : kTraceOutcomes) valid += (valid.empty() ? "" : ", ") + o;
@@ -39,6 +51,11 @@ void check_trace(const EpisodeTrace& t, const std::string& what) {
       if (f < 0 || static_cast<std::size_t>(f) >= n)
         fail("wire_shape_frame " + std::to_string(f) + " is outside 0.." + std::to_string(n) + "-1");
   }
+}
+
+int strict_end(const EpisodeTrace& t) {
+  if (t.strict_end_frame >= 0) return t.strict_end_frame;
+  return t.time_s.empty() ? 0 : static_cast<int>(t.time_s.size()) - 1;
 }
 
 }  // namespace gw

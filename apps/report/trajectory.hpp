@@ -42,14 +42,36 @@ struct EpisodeTrace {
   // -1 = the tip bent straight away from the wrong branch: a tip that was aimed and still went wrong
   // points at the wire and the anatomy, not at the controller's aim. NaN for any other outcome.
   double omega_at_loss = std::numeric_limits<double>::quiet_NaN();
+
+  // Wall force per frame, mN (engine/task/wall_force.hpp, StepInfo): over the env step that led to the
+  // frame, the largest single-node force, the largest and the mean total over the nodes, the largest
+  // force on the distal 1 mm. Optional: empty, or one entry per frame (frame 0, the reset, is 0).
+  std::vector<double> wall_force_peak_node_mN;
+  std::vector<double> wall_force_peak_total_mN;
+  std::vector<double> wall_force_mean_total_mN;
+  std::vector<double> tip_force_mN;
+
+  // Recovery (TaskConfig::recovery_attempts, docs/recovery.md). outcome/detail above are always the
+  // paper's strict episode's, which ended at frame strict_end_frame (-1 = the last frame); with recovery
+  // the frames go on to the end of the procedure, whose outcome is recovery_outcome.
+  int strict_end_frame = -1;
+  int recovery_attempts_allowed = 0;  // K; 0 = the strict task only (the fields below are unused)
+  int recovery_attempts_used = 0;
+  std::string recovery_outcome;       // one of kTraceOutcomes when recovery_attempts_allowed > 0
+  std::string recovery_detail;
+  std::vector<bool> retracting;       // optional, per frame: the env step that led to it pulled the wire back
 };
+
+// The frame the strict episode ended at (strict_end_frame, or the last frame; 0 for an empty trace).
+int strict_end(const EpisodeTrace& trace);
 
 // The outcomes a trace may carry (what navigate's summary counts).
 extern const std::vector<std::string> kTraceOutcomes;
 
 // Throws std::invalid_argument "<what>: <problem>" when the trace is inconsistent:
-// per-frame vectors of different lengths, an outcome not in kTraceOutcomes, a negative
-// target id, wire_shape_frame neither empty nor one frame index (in range) per shape.
+// per-frame vectors of different lengths, an outcome (or a recovery outcome) not in kTraceOutcomes, a
+// negative target id, wire_shape_frame neither empty nor one frame index (in range) per shape, a
+// strict_end_frame out of range.
 // `what` names the trace in the message (e.g. the output file).
 void check_trace(const EpisodeTrace& trace, const std::string& what = "trace");
 

@@ -1,5 +1,7 @@
 #include "apps/runner/episode_batch.hpp"
 
+#include "apps/runner/episode_force.hpp"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -89,38 +91,109 @@ std::vector<EpisodeTrace> run_batch(const NavigationTask& task, const std::vecto
 bool tip_folded_before_loss(const EpisodeTrace& trace) {
   if (trace.outcome != "wrong_branch" || trace.time_s.empty() || trace.observation.size() != trace.time_s.size())
     return false;
-  const double end = trace.time_s.back();
-  for (std::size_t f = trace.time_s.size(); f-- > 0 && end - trace.time_s[f] <= kFoldWindowS;)
+  const std::size_t last = static_cast<std::size_t>(strict_end(trace));  // the loss: the strict episode's end
+  const double end = trace.time_s[last];
+  for (std::size_t f = last + 1; f-- > 0 && end - trace.time_s[f] <= kFoldWindowS;)
     if (trace.observation[f].size() > obs_index::kTheta && trace.observation[f][obs_index::kTheta] < kFoldedTheta)
       return true;
   return false;
 }
 
+namespace {
+
+// Over the episodes' force figures (episode_force) under `key` of each result (or of its "recovery"):
+// {"episodes" with a figure, "mean_peak_node_N", "share_peak_node_over_1_5N", "mean_peak_total_N",
+// "share_peak_total_over_1_5N", "mean_peak_tip_N", "mean_mean_total_N"}; {} when none has one.
+nlohmann::json force_summary(const std::vector<nlohmann::json>& forces) {
+  int n = 0, node_over = 0, total_over = 0;
+  double node = 0, total = 0, tip = 0, mean = 0;
+  for (const nlohmann::json& f : forces) {
+    if (!f.contains("peak_node_N")) continue;
+    ++n;
+    node += f["peak_node_N"].get<double>();
+    total += f["peak_total_N"].get<double>();
+    tip += f["peak_tip_N"].get<double>();
+    mean += f["mean_total_N"].get<double>();
+    node_over += f["peak_node_N"].get<double>() > kRuptureForceN;
+    total_over += f["peak_total_N"].get<double>() > kRuptureForceN;
+  }
+  if (n == 0) return nlohmann::json::object();
+  return {{"episodes", n},
+          {"mean_peak_node_N", node / n},
+          {"share_peak_node_over_1_5N", static_cast<double>(node_over) / n},
+          {"mean_peak_total_N", total / n},
+          {"share_peak_total_over_1_5N", static_cast<double>(total_over) / n},
+          {"mean_peak_tip_N", tip / n},
+          {"mean_mean_total_N", mean / n}};
+}
+
+}  // namespace
+
 nlohmann::json summarize_episodes(const std::vector<EpisodeTrace>& traces) {
-  nlohmann::json outcomes = nlohmann::json::object();
-  for (const std::string& o : kTraceOutcomes) outcomes[o] = 0;
+  nlohmann::json outcomes = nlohmann::json::object(), recovered_outcomes = nlohmann::json::object();
+  for (const std::string& o : kTraceOutcomes) outcomes[o] = recovered_outcomes[o] = 0;
   nlohmann::json results = nlohmann::json::array();
-  int successes = 0;
+  std::vector<nlohmann::json> forces, recovered_forces;
+  int successes = 0, recovered = 0, with_recovery = 0, attempts_allowed = 0, attempts = 0;
+  double procedure_time = 0;
   for (const EpisodeTrace& t : traces) {
     successes += t.outcome == "success";
     outcomes[t.outcome] = outcomes.value(t.outcome, 0) + 1;
+    const int end = strict_end(t);
     results.push_back({{"anatomy", t.anatomy},
                        {"controller", t.controller},
                        {"target", t.target_id},
                        {"seed", t.seed},
                        {"outcome", t.outcome},
                        {"detail", t.detail},
-                       {"steps", t.time_s.empty() ? 0 : static_cast<int>(t.time_s.size()) - 1},
-                       {"sim_time_s", t.time_s.empty() ? 0.0 : t.time_s.back()}});
+                       {"steps", end},
+                       {"sim_time_s", t.time_s.empty() ? 0.0 : t.time_s[static_cast<std::size_t>(end)]}});
     if (!std::isnan(t.omega_at_loss)) results.back()["omega_at_loss"] = t.omega_at_loss;
     if (t.outcome == "wrong_branch") results.back()["folded"] = tip_folded_before_loss(t);
+    const nlohmann::json force = episode_force(t, 0, end);
+    if (!force.empty()) results.back()["force"] = force;
+    forces.push_back(force);
+    if (t.recovery_attempts_allowed > 0) {
+      // The whole procedure: the strict episode and what recovery did after it.
+      const int last = static_cast<int>(t.time_s.size()) - 1;
+      const nlohmann::json whole = episode_force(t, 0, last);
+      nlohmann::json r = {{"attempts_allowed", t.recovery_attempts_allowed},
+                          {"attempts", t.recovery_attempts_used},
+                          {"outcome", t.recovery_outcome},
+                          {"detail", t.recovery_detail},
+                          {"steps", last},
+                          {"procedure_time_s", t.time_s.empty() ? 0.0 : t.time_s.back()}};
+      if (!whole.empty()) r["force"] = whole;
+      results.back()["recovery"] = r;
+      ++with_recovery;
+      attempts_allowed = std::max(attempts_allowed, t.recovery_attempts_allowed);
+      recovered += t.recovery_outcome == "success";
+      recovered_outcomes[t.recovery_outcome] = recovered_outcomes.value(t.recovery_outcome, 0) + 1;
+      attempts += t.recovery_attempts_used;
+      procedure_time += r["procedure_time_s"].get<double>();
+      recovered_forces.push_back(whole);
+    }
   }
   const int n = static_cast<int>(traces.size());
-  return {{"episodes", n},
-          {"successes", successes},
-          {"success_rate", n ? static_cast<double>(successes) / n : 0.0},
-          {"outcomes", outcomes},
-          {"results", results}};
+  nlohmann::json out = {{"episodes", n},
+                        {"successes", successes},
+                        {"success_rate", n ? static_cast<double>(successes) / n : 0.0},
+                        {"outcomes", outcomes},
+                        {"results", results}};
+  const nlohmann::json force = force_summary(forces);
+  if (!force.empty()) out["force"] = force;
+  if (with_recovery > 0) {
+    out["recovery"] = {{"attempts_allowed", attempts_allowed},
+                       {"episodes", with_recovery},
+                       {"successes", recovered},
+                       {"success_rate", static_cast<double>(recovered) / with_recovery},
+                       {"outcomes", recovered_outcomes},
+                       {"mean_attempts", static_cast<double>(attempts) / with_recovery},
+                       {"mean_procedure_time_s", procedure_time / with_recovery}};
+    const nlohmann::json rf = force_summary(recovered_forces);
+    if (!rf.empty()) out["recovery"]["force"] = rf;
+  }
+  return out;
 }
 
 }  // namespace gw

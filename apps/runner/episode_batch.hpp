@@ -47,7 +47,13 @@ bool tip_folded_before_loss(const EpisodeTrace& trace);
 
 // {"episodes", "successes", "success_rate", "outcomes": {outcome: count}, "results": [per episode:
 // anatomy, controller, target, seed, outcome, detail, steps, sim_time_s, and for a wrong branch
-// omega_at_loss (EpisodeTrace) and "folded" (tip_folded_before_loss)]}.
+// omega_at_loss (EpisodeTrace) and "folded" (tip_folded_before_loss), "force" (episode_force, N) and with
+// recovery "recovery": {attempts_allowed, attempts, outcome, detail, steps, procedure_time_s, force}],
+// "force": {mean_peak_node_N, share_peak_node_over_1_5N, mean_peak_total_N, share_peak_total_over_1_5N,
+// mean_peak_tip_N, mean_mean_total_N}, and with recovery "recovery": {attempts_allowed, episodes,
+// successes, success_rate, outcomes, mean_attempts, mean_procedure_time_s, force}}. Outcome, steps,
+// sim_time_s and force are the paper's strict episode's (it ends where the first wrong branch or stall
+// ends it), recovery's figures the whole procedure's.
 nlohmann::json summarize_episodes(const std::vector<EpisodeTrace>& traces);
 
 }  // namespace gw

@@ -173,6 +173,8 @@ nlohmann::json evaluation_settings(const EvaluationOptions& o) {
           {"episode_scale", o.episode_scale},
           {"reachability_seeds", o.reachability_seeds},
           {"controllers", o.controllers}};
+  // Only when on, so the results.json files written before recovery existed resume as before.
+  if (o.recovery_attempts > 0) settings["recovery_attempts"] = o.recovery_attempts;
   if (o.junctions != JunctionModel::kSeparate) settings["junctions"] = junction_model_name(o.junctions);
   return settings;
 }
@@ -258,8 +260,10 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
         auto make = [&] { return make_controller(kind, policy); };
         TaskConfig config = base_config;
         make()->adapt(config);  // an actor trained on the paper's omega (obs/1) is evaluated with it
+        config.recovery_attempts = o.recovery_attempts;  // the controllers' columns only: probes stay strict
         std::optional<NavigationTask> adapted;
-        if (config.omega_plane != default_task.config.omega_plane || config.junctions != default_task.config.junctions)
+        if (config.omega_plane != default_task.config.omega_plane || config.junctions != default_task.config.junctions ||
+            config.recovery_attempts > 0)
           adapted = make_navigation_task(config, wire, anatomies);
         const NavigationTask& task = adapted ? *adapted : default_task;
         const std::string where = label + ", " + kind + ": ";
@@ -504,6 +508,61 @@ std::string failure_modes(const nlohmann::json& summary, const std::set<std::str
   return text.empty() ? "none" : text;
 }
 
+// Wall force and recovery per row and column (summarize_episodes' "force" and "recovery"), or "" when
+// no column carries either (results.json files written before them).
+std::string safety_and_recovery_table(const nlohmann::json& e) {
+  std::ostringstream md;
+  bool any = false, recovery = false;
+  for (const nlohmann::json& r : e["rows"])
+    if (r.contains("results"))
+      for (const auto& [column, summary] : r["results"].items()) {
+        any = any || summary.contains("force") || summary.contains("recovery");
+        recovery = recovery || summary.contains("recovery");
+      }
+  if (!any) return "";
+  auto fixed = [](double v, int digits) {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(digits) << v;
+    return s.str();
+  };
+  auto force_cells = [&](const nlohmann::json& f) {
+    if (!f.contains("mean_peak_node_N")) return std::string("— | — | —");
+    return fixed(f["mean_peak_node_N"].get<double>(), 2) + " | " + fixed(f["mean_peak_total_N"].get<double>(), 2) +
+           " | " + fixed(100.0 * f["share_peak_node_over_1_5N"].get<double>(), 0) + "%";
+  };
+  md << "\nWall force and recovery (docs/recovery.md). Peak node force: the largest force on one node of the "
+        "wire over the episode (the wall's reaction, normal and friction), mean over the episodes; peak total: "
+        "the largest sum over the nodes; > 1.5 N: share of episodes whose peak node force exceeds 1.5 N.";
+  if (recovery)
+    md << " With recovery: the same episodes go on after the strict end (first wrong branch or stall): the "
+          "wire is pulled back before the bifurcation and advanced again, at most K times; attempts and "
+          "procedure time (simulated) are means over the episodes, force over the whole procedure.";
+  md << "\n\n| case | column | strict success | peak node force (N) | peak total (N) | > 1.5 N |";
+  if (recovery) md << " with recovery | K | attempts | procedure time (s) | peak node (N) | peak total (N) | > 1.5 N |";
+  md << "\n|---|---|---|---|---|---|" << (recovery ? "---|---|---|---|---|---|---|" : "") << "\n";
+  for (const nlohmann::json& r : e["rows"]) {
+    if (!r.contains("results")) continue;
+    for (const auto& [column, summary] : r["results"].items()) {
+      md << "| " << r["name"].get<std::string>() << " | " << column << " | "
+         << share(summary["successes"].get<int>(), summary["episodes"].get<int>()) << " | "
+         << force_cells(summary.value("force", nlohmann::json::object())) << " |";
+      if (recovery) {
+        if (!summary.contains("recovery")) {
+          md << " — | — | — | — | — | — | — |";
+        } else {
+          const nlohmann::json& rec = summary["recovery"];
+          md << " " << share(rec["successes"].get<int>(), rec["episodes"].get<int>()) << " | "
+             << rec["attempts_allowed"].get<int>() << " | " << fixed(rec["mean_attempts"].get<double>(), 2) << " | "
+             << fixed(rec["mean_procedure_time_s"].get<double>(), 1) << " | "
+             << force_cells(rec.value("force", nlohmann::json::object())) << " |";
+        }
+      }
+      md << "\n";
+    }
+  }
+  return md.str();
+}
+
 }  // namespace
 
 std::string evaluation_to_markdown(const nlohmann::json& e) {
@@ -543,6 +602,7 @@ std::string evaluation_to_markdown(const nlohmann::json& e) {
         "or, where none did, one of the 8 rotation schedules of apps/runner/rotation_schedules.hpp; the "
         "action is only the rotation rate, so this is what rotation alone is shown to reach on these "
         "episodes.\n";
+  md << safety_and_recovery_table(e);
   md << "\nFailure modes (episodes that did not reach the target, by outcome; in brackets the anatomy, "
         "target and, for a wrong branch, the goal (bifurcation on the path, k of n) it was lost before; "
         "[unreachable]: no controller of the row reached that target and none of "

@@ -52,6 +52,7 @@ struct EvaluationOptions {
   double intermediate_target_mm = TaskConfig{}.intermediate_target_mm;  // trees (task_config.hpp)
   double push_mm_per_s = TaskConfig{}.push_mm_per_s;                    // insertion speed (task_config.hpp)
   std::string wire_path;                                                // wire parameter JSON ("" = the 0.014" wire)
+  int recovery_attempts = 0;  // --recovery K (task_config.hpp): the columns also report the procedure with recovery
   JunctionModel junctions = JunctionModel::kSeparate;  // --junctions (task_config.hpp; issue 41)
 };
 

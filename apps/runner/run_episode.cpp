@@ -10,14 +10,19 @@
 namespace gw {
 namespace {
 
-void record_frame(const NavigationTask& task, const EpisodeState& s, double action, bool in_control, int frame,
-                  const TraceOptions& options, EpisodeTrace& trace) {
+void record_frame(const NavigationTask& task, const EpisodeState& s, const StepInfo& info, double action,
+                  bool in_control, int frame, const TraceOptions& options, EpisodeTrace& trace) {
   trace.time_s.push_back(s.wire.time);
   trace.tip.push_back(s.tip);
   trace.action.push_back(action);
   trace.agent_in_control.push_back(in_control);
   trace.observation.emplace_back(s.obs.begin(), s.obs.end());
   trace.goal.push_back(s.goal);
+  trace.wall_force_peak_node_mN.push_back(info.wall_force_peak_node_mN);
+  trace.wall_force_peak_total_mN.push_back(info.wall_force_peak_total_mN);
+  trace.wall_force_mean_total_mN.push_back(info.wall_force_mean_total_mN);
+  trace.tip_force_mN.push_back(info.tip_force_mN);
+  if (task.config.recovery_attempts > 0) trace.retracting.push_back(info.retracting);
   if (options.wire_shape_every > 0 && frame % options.wire_shape_every == 0) {
     trace.wire_shapes.push_back(inserted_node_positions(task.wire, s.wire));
     trace.wire_shape_frame.push_back(frame);
@@ -25,24 +30,22 @@ void record_frame(const NavigationTask& task, const EpisodeState& s, double acti
 }
 
 // Maps the task's end flags onto the trace outcomes the report and the summary count.
-void set_outcome(const StepOutcome& out, EpisodeTrace& trace) {
-  const StepInfo& i = out.info;
+void set_outcome(const StepInfo& i, std::string& outcome, std::string& detail) {
   const std::string where = "goal " + std::to_string(i.goal + 1) + " of " + std::to_string(i.goals);
   if (i.success) {
-    trace.outcome = "success";
+    outcome = "success";
   } else if (i.wrong_branch) {
-    trace.outcome = "wrong_branch";
-    trace.detail = "entered a wrong branch before " + where;
+    outcome = "wrong_branch";
+    detail = "entered a wrong branch before " + where;
   } else if (!i.problem.empty() && !i.time_limit) {
-    trace.outcome = "diverged";
-    trace.detail = i.problem;
+    outcome = "diverged";
+    detail = i.problem;
   } else if (i.stuck) {
-    trace.outcome = "stuck";
-    trace.detail = "no progress at " + std::to_string(static_cast<int>(i.progress_mm)) + " mm along the path (" +
-                   where + ")";
+    outcome = "stuck";
+    detail = "no progress at " + std::to_string(static_cast<int>(i.progress_mm)) + " mm along the path (" + where + ")";
   } else {
-    trace.outcome = "timeout";
-    trace.detail = i.time_limit ? i.problem : i.wire_exhausted ? "wire fully inserted" : "step limit reached";
+    outcome = "timeout";
+    detail = i.time_limit ? i.problem : i.wire_exhausted ? "wire fully inserted" : "step limit reached";
   }
 }
 
@@ -58,26 +61,38 @@ EpisodeTrace run_episode(const NavigationTask& task, int anatomy, int target_id,
   trace.target_id = s.target_id;
   trace.seed = seed;
   for (const char* name : observation_names()) trace.observation_names.emplace_back(name);
+  const int attempts = task.config.recovery_attempts;
+  trace.recovery_attempts_allowed = attempts;
   int frame = 0;
-  record_frame(task, s, 0.0, s.in_control, frame, options, trace);
+  record_frame(task, s, StepInfo{}, 0.0, s.in_control, frame, options, trace);
   // omega when the tip reached each bifurcation centre on the course (goal k belongs to bifurcation k).
   const std::vector<CourseBifurcation>& bifurcations = s.course->bifurcations;
   std::vector<double> omega_at_centre(bifurcations.size(), std::numeric_limits<double>::quiet_NaN());
   std::size_t next_centre = 0;
+  bool strict_over = false;
   for (;;) {
     const bool in_control = s.in_control;
     const double action = in_control ? controller.act(s.obs) : 0.0;
     const StepOutcome out = step_episode(task, s, action, {});
     ++frame;
-    record_frame(task, s, action, in_control, frame, options, trace);
-    for (; next_centre < bifurcations.size() && s.progress_mm >= bifurcations[next_centre].arc; ++next_centre)
+    record_frame(task, s, out.info, action, in_control, frame, options, trace);
+    for (; !strict_over && next_centre < bifurcations.size() && s.progress_mm >= bifurcations[next_centre].arc;
+         ++next_centre)
       omega_at_centre[next_centre] = s.obs[obs_index::kOmega];
-    if (out.terminated || out.truncated) {
-      set_outcome(out, trace);
+    if (out.info.strict_end) {  // the paper's episode ends here (with recovery the procedure may go on)
+      strict_over = true;
+      set_outcome(out.info, trace.outcome, trace.detail);
+      if (attempts > 0) trace.strict_end_frame = frame;
       if (out.info.wrong_branch) {
         const auto lost = static_cast<std::size_t>(out.info.goal);
         const bool reached = lost < omega_at_centre.size() && !std::isnan(omega_at_centre[lost]);
         trace.omega_at_loss = reached ? omega_at_centre[lost] : s.obs[obs_index::kOmega];
+      }
+    }
+    if (out.terminated || out.truncated) {
+      if (attempts > 0) {
+        set_outcome(out.info, trace.recovery_outcome, trace.recovery_detail);
+        trace.recovery_attempts_used = out.info.recovery_attempts;
       }
       break;
     }

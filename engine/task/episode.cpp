@@ -9,6 +9,7 @@
 #include "engine/sim/step.hpp"
 #include "engine/task/bifurcation_omega.hpp"
 #include "engine/task/reward.hpp"
+#include "engine/task/wall_force.hpp"
 
 namespace gw {
 
@@ -45,16 +46,33 @@ bool near_a_bifurcation(const TaskConfig& c, const Course& course, const Eigen::
 // Tip far enough along a wrong child and closer to it than to any part of the course. (Comparing
 // with the whole course, not just the continuation past the bifurcation, matters where a wrong
 // child bends back towards the access vessel, e.g. an S-shaped pattern.)
-bool in_wrong_branch(const TaskConfig& c, const Anatomy& anatomy, const Course& course, const Eigen::Vector3d& tip,
-                     double course_distance) {
-  for (const CourseBifurcation& b : course.bifurcations) {
-    for (int w : b.wrong_branches) {
+// Returns the index (into course.bifurcations) of the bifurcation whose wrong child the tip is in, or -1.
+int wrong_branch_entered(const TaskConfig& c, const Anatomy& anatomy, const Course& course, const Eigen::Vector3d& tip,
+                         double course_distance) {
+  for (size_t k = 0; k < course.bifurcations.size(); ++k) {
+    for (int w : course.bifurcations[k].wrong_branches) {
       const PolylineProjection pw = project_onto_polyline(anatomy.branch_lines[static_cast<size_t>(w)], tip);
-      if (pw.arc >= c.wrong_branch_depth_mm && pw.distance < course_distance) return true;
+      if (pw.arc >= c.wrong_branch_depth_mm && pw.distance < course_distance) return static_cast<int>(k);
     }
   }
-  return false;
+  return -1;
 }
+
+// Recovery: where to pull back to from the tip's progress `at` along the course. After a wrong branch
+// at bifurcation `lost` (>= 0): recovery_retract_mm before its centre. After a stall or a fold: that far
+// before the tip, and before the centre of any bifurcation the tip is within control_radius_mm of (along
+// the course), so the controller re-aims for it from the edge of its control zone.
+double retract_target(const TaskConfig& c, const Course& course, double at, int lost) {
+  if (lost >= 0) return course.bifurcations[static_cast<size_t>(lost)].arc - c.recovery_retract_mm;
+  double to = at - c.recovery_retract_mm;
+  for (const CourseBifurcation& b : course.bifurcations)
+    if (std::abs(at - b.arc) <= c.control_radius_mm) to = std::min(to, b.arc - c.recovery_retract_mm);
+  return to;
+}
+
+// A folded tip (recovery only, after the strict end): the distal tangent points back down the vessel
+// (theta_1 below this; the threshold the runner's fold count uses, apps/runner/episode_batch.hpp).
+constexpr double kFoldedTheta = -0.5;
 
 // Observes the wire: fills state.obs (theta, lambda, omega, speed; action set by the caller),
 // advances the goal and the progress bookkeeping. `first` = at reset (history = current values).
@@ -204,6 +222,8 @@ EpisodeState reset_episode(const NavigationTask& task, int anatomy, int target_i
   draw_random_start(task, rng, s);
   s.obs[obs_index::kAction] = 0.0;
   s.best_progress_mm = s.progress_mm;
+  s.procedure_max_steps =
+      s.max_steps + (c.recovery_attempts > 0 ? static_cast<int>(std::ceil(c.recovery_time_s / env_dt(c))) : 0);
   return s;
 }
 
@@ -221,16 +241,72 @@ StepInfo episode_info(const NavigationTask& task, const EpisodeState& s) {
   return info;
 }
 
+namespace {
+
+// Recovery: env steps that pull-back `attempt` (1-based) turns for: attempt * recovery_turn_rad at the
+// full rotation rate (at least one step).
+int recovery_turn_steps(const TaskConfig& c, int attempt) {
+  return std::max(1, static_cast<int>(std::lround(attempt * c.recovery_turn_rad / (c.max_rotation_rad_per_s * env_dt(c)))));
+}
+
+// Recovery: starts pulling the wire back to retract_target (one attempt).
+void start_retraction(const NavigationTask& task, EpisodeState& s, int lost) {
+  const TaskConfig& c = task.config;
+  ++s.recovery_attempts_used;
+  s.retracting = true;
+  s.in_control = false;
+  s.retract_to_mm = retract_target(c, *s.course, s.progress_mm, lost);
+  const double pull_per_step = env_dt(c) * c.recovery_pull_mm_per_s;
+  // Twice the steps the distance needs (a wire that slides back slower than it is pulled), and 1 s more.
+  s.retract_steps_left =
+      static_cast<int>(std::ceil(2.0 * std::max(0.0, s.progress_mm - s.retract_to_mm) / pull_per_step)) +
+      static_cast<int>(std::ceil(1.0 / env_dt(c)));
+  s.turn_steps_left = c.recovery_turn_rad > 0 ? recovery_turn_steps(c, s.recovery_attempts_used) : 0;
+}
+
+// Recovery: the tip is back upstream. The goal is the one the tip's progress is before (a tip in a wrong
+// branch may have projected past the hand-over point), lambda_0 is measured afresh from here (as at a
+// hand-over), and the stall test starts again.
+void end_retraction(const NavigationTask& task, EpisodeState& s) {
+  const TaskConfig& c = task.config;
+  const Course& course = *s.course;
+  s.retracting = false;
+  int goal = 0;
+  const int last_goal = static_cast<int>(course.goal_arc.size()) - 1;
+  while (goal < last_goal && s.progress_mm >= course.goal_arc[static_cast<size_t>(goal)]) ++goal;
+  s.goal = goal;
+  s.lambda_mm = std::max(0.0, course.lambda_arc[static_cast<size_t>(goal)] - s.progress_mm);
+  s.lambda0_mm = std::max(s.lambda_mm, 1e-3);
+  s.obs[obs_index::kLambda] = s.obs[obs_index::kLambdaPrev] = lambda_ratio(c, s);
+  s.in_control = course.policy_always || near_a_bifurcation(c, course, s.tip);
+  s.best_progress_mm = s.progress_mm;
+  s.best_progress_step = s.steps;
+}
+
+}  // namespace
+
 StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, double action, const StepLimits& limits) {
   if (!std::isfinite(action)) throw std::invalid_argument("action is not a finite number");
   if (s.done) throw std::logic_error("the episode is over; reset before stepping");
   if (!s.course) throw std::logic_error("episode was never reset");
   const TaskConfig& c = task.config;
   const Anatomy& anatomy = task.anatomies[static_cast<size_t>(s.anatomy)];
-  const double applied = s.in_control ? std::clamp(action, -1.0, 1.0) : 0.0;
-  const Control control{c.push_mm_per_s, applied * c.max_rotation_rad_per_s + disturbance_rate(c, s)};
+  const bool retracting = s.retracting;
+  const double applied = s.in_control && !retracting ? std::clamp(action, -1.0, 1.0) : 0.0;
+  Control control{c.push_mm_per_s, applied * c.max_rotation_rad_per_s + disturbance_rate(c, s)};
+  if (retracting) {
+    control.push_mm_per_s = -c.recovery_pull_mm_per_s;
+    if (s.turn_steps_left > 0) {  // pull-back k turns by k * recovery_turn_rad at the full rotation rate
+      const double turn = s.recovery_attempts_used * c.recovery_turn_rad;
+      control.rotate_rad_per_s += turn / (recovery_turn_steps(c, s.recovery_attempts_used) * env_dt(c));
+      --s.turn_steps_left;
+    }
+  }
 
   StepOutcome out;
+  WallForce peak;
+  double total_sum = 0.0;
+  int physics_steps = 0;
   const auto start = std::chrono::steady_clock::now();
   for (int k = 0; k < c.frame_skip; ++k) {
     const StepReport report = step(task.wire, anatomy.scene.get(), control, s.wire);
@@ -239,6 +315,12 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, double act
       out.info.problem = "physics diverged: " + report.problem;
       break;
     }
+    const WallForce f = wall_force(task.wire, s.wire);
+    peak.peak_node_mN = std::max(peak.peak_node_mN, f.peak_node_mN);
+    peak.total_mN = std::max(peak.total_mN, f.total_mN);
+    peak.tip_mN = std::max(peak.tip_mN, f.tip_mN);
+    total_sum += f.total_mN;
+    ++physics_steps;
     if (limits.wall_time_s > 0 &&
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > limits.wall_time_s) {
       out.info.time_limit = true;
@@ -248,6 +330,14 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, double act
   }
   ++s.steps;
   const int contacts = out.info.contacts;
+  auto fill_force = [&](StepInfo& info) {
+    info.contacts = contacts;
+    info.wall_force_peak_node_mN = peak.peak_node_mN;
+    info.wall_force_peak_total_mN = peak.total_mN;
+    info.wall_force_mean_total_mN = physics_steps > 0 ? total_sum / physics_steps : 0.0;
+    info.tip_force_mN = peak.tip_mN;
+    info.retracting = retracting;
+  };
   if (!out.info.problem.empty()) {
     // The wire state is not trustworthy: keep the last observation, end the episode (truncated:
     // not an outcome of the agent's behaviour).
@@ -257,7 +347,10 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, double act
     out.info = episode_info(task, s);
     out.info.problem = std::move(problem);
     out.info.time_limit = time_limit;
-    out.info.contacts = contacts;
+    fill_force(out.info);
+    out.info.strict_end = !s.strict_over;
+    s.strict_over = true;
+    out.info.recovery_attempts = s.recovery_attempts_used;
     out.obs = s.obs;
     out.truncated = true;
     return out;
@@ -267,22 +360,61 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, double act
   s.obs[obs_index::kAction] = applied;
   out.obs = s.obs;
   out.reward = navigation_reward(s.obs[obs_index::kOmega], s.obs[obs_index::kLambda], applied, c.reward);
+  if (c.reward_force_per_N > 0) out.reward -= c.reward_force_per_N * 1e-3 * peak.total_mN;
+
+  if (retracting) {
+    // Recovery only: no end test but the procedure's step limit while the wire comes back.
+    --s.retract_steps_left;
+    const double pull_per_step = env_dt(c) * c.recovery_pull_mm_per_s;
+    if (s.progress_mm <= s.retract_to_mm || s.retract_steps_left <= 0 ||
+        s.wire.inserted_length_mm <= c.initial_insertion_mm + pull_per_step)
+      end_retraction(task, s);
+    else
+      s.in_control = false;
+    out.obs = s.obs;
+    out.info = episode_info(task, s);
+    fill_force(out.info);
+    out.info.recovery_attempts = s.recovery_attempts_used;
+    out.info.step_limit = s.steps >= s.procedure_max_steps;
+    out.truncated = out.info.step_limit;
+    s.done = out.truncated;
+    return out;
+  }
 
   if (s.progress_mm > s.best_progress_mm + c.stuck_progress_mm) {
     s.best_progress_mm = s.progress_mm;
     s.best_progress_step = s.steps;
   }
   out.info = episode_info(task, s);
-  out.info.contacts = contacts;
+  fill_force(out.info);
   out.info.success = out.info.tip_to_target_mm <= c.success_radius_mm;
-  out.info.wrong_branch = !out.info.success && in_wrong_branch(c, anatomy, *s.course, s.tip, s.course_distance_mm);
+  const int lost = out.info.success ? -1 : wrong_branch_entered(c, anatomy, *s.course, s.tip, s.course_distance_mm);
+  out.info.wrong_branch = lost >= 0;
   out.terminated = out.info.success || out.info.wrong_branch;
   if (!out.terminated) {
-    out.info.step_limit = s.steps >= s.max_steps;
+    out.info.step_limit = s.steps >= (s.strict_over ? s.procedure_max_steps : s.max_steps);
     out.info.stuck = s.steps - s.best_progress_step >= c.stuck_steps;
     out.info.wire_exhausted = s.wire.inserted_length_mm >= task.wire.params.length_mm - c.wire_reserve_mm;
     out.truncated = out.info.step_limit || out.info.stuck || out.info.wire_exhausted;
   }
+  out.info.strict_end = !s.strict_over && (out.terminated || out.truncated);
+  s.strict_over = s.strict_over || out.info.strict_end;
+  if (c.recovery_attempts > 0 && !out.info.success && !out.info.wire_exhausted) {
+    // Recovery: a wrong branch, a stall or (once the strict episode is over) a folded tip starts a
+    // pull-back while attempts and time are left; a strict step limit only lets the procedure go on.
+    const bool folded = s.strict_over && s.obs[obs_index::kTheta] < kFoldedTheta;
+    const bool time_left = s.steps < s.procedure_max_steps;
+    if ((out.info.wrong_branch || out.info.stuck || folded) && s.recovery_attempts_used < c.recovery_attempts &&
+        time_left) {
+      start_retraction(task, s, lost);
+      out.info.in_control = false;
+      out.terminated = out.truncated = false;
+    } else if (!out.info.wrong_branch && !out.info.stuck) {
+      out.info.step_limit = !time_left;
+      out.truncated = !time_left;
+    }
+  }
+  out.info.recovery_attempts = s.recovery_attempts_used;
   s.done = out.terminated || out.truncated;
   return out;
 }

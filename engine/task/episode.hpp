@@ -41,6 +41,14 @@ struct EpisodeState {
   int steps = 0;
   int max_steps = 0;
   bool done = false;
+  // Recovery (TaskConfig::recovery_attempts > 0; with 0 these stay as they are here).
+  bool strict_over = false;        // the paper's strict episode has ended (StepInfo::strict_end was reported)
+  bool retracting = false;         // pulling the wire back: no action is applied (in_control is false)
+  int recovery_attempts_used = 0;  // pull-backs started
+  double retract_to_mm = 0.0;      // pull back until progress_mm is at most this
+  int retract_steps_left = 0;      // bound on one pull-back (a wire caught on the wall stops pulling)
+  int turn_steps_left = 0;         // env steps of the recovery turn still to apply
+  int procedure_max_steps = 0;     // step limit with recovery: max_steps + recovery_time_s; else max_steps
   TipSamples samples;              // scratch, kept here so stepping does not allocate
 };
 
@@ -61,6 +69,18 @@ struct StepInfo {
   double progress_mm = 0.0;
   double inserted_mm = 0.0;
   int contacts = 0;                // last physics step's contact count
+  // Wall force over this env step's physics steps (wall_force.hpp), mN: the largest single-node force,
+  // the largest and the mean total over the nodes, the largest force on the distal kTipForceLengthMm.
+  double wall_force_peak_node_mN = 0.0;
+  double wall_force_peak_total_mN = 0.0;
+  double wall_force_mean_total_mN = 0.0;
+  double tip_force_mN = 0.0;
+  // Recovery (TaskConfig::recovery_attempts). strict_end: the paper's strict episode ends at this step and
+  // the flags above say why (with 0 attempts it is terminated || truncated; with recovery the episode may
+  // go on). retracting: this step pulled the wire back. recovery_attempts: pull-backs started so far.
+  bool strict_end = false;
+  bool retracting = false;
+  int recovery_attempts = 0;
 };
 
 struct StepOutcome {

@@ -45,8 +45,16 @@ void check_task_config(const TaskConfig& c) {
   require(c.random_start_margin_mm >= 0, "random_start_margin_mm", ">= 0");
   require(c.roll_disturbance_probability == 0 || c.max_rotation_rad_per_s > 0, "max_rotation_rad_per_s",
           "> 0 when roll_disturbance_probability > 0");
+  require(c.recovery_attempts >= 0, "recovery_attempts", ">= 0 (0 = the paper's strict task)");
+  require(c.recovery_retract_mm > 0 && std::isfinite(c.recovery_retract_mm), "recovery_retract_mm", "> 0");
+  require(c.recovery_pull_mm_per_s > 0 && std::isfinite(c.recovery_pull_mm_per_s), "recovery_pull_mm_per_s", "> 0");
+  require(c.recovery_turn_rad >= 0 && c.recovery_turn_rad <= 6.283185307179586, "recovery_turn_rad", "in [0, 2 pi]");
+  require(c.recovery_time_s >= 0 && std::isfinite(c.recovery_time_s), "recovery_time_s", ">= 0");
+  require(c.recovery_turn_rad == 0 || c.recovery_attempts == 0 || c.max_rotation_rad_per_s > 0,
+          "max_rotation_rad_per_s", "> 0 when recovery turns the wire");
   require(c.close_junction_diameters >= 0 && std::isfinite(c.close_junction_diameters), "close_junction_diameters",
           ">= 0");
+  require(c.reward_force_per_N >= 0 && std::isfinite(c.reward_force_per_N), "reward_force_per_N", ">= 0 (0 = off)");
 }
 
 ControlMode parse_control_mode(const std::string& text) {

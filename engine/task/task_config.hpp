@@ -97,6 +97,31 @@ struct TaskConfig {
   // the tip 13 mm before the centre at omega -0.8, it rolled to +0.5 and took the wrong branch).
   double random_start_probability = 0.0;
   double random_start_margin_mm = 8.0;
+  // --- Recovery (issue 37 item 1a; docs/recovery.md). 0 attempts = the paper's strict task: every
+  // episode bit for bit as before. With K > 0 the episode does not end where the strict one does (first
+  // wrong branch, a stall): it reports that step as the strict end (StepInfo::strict_end) and goes on:
+  // pull the wire back (negative push, no action applied) until the tip's projection on the course is
+  // recovery_retract_mm before the centre of the bifurcation it was lost at (a stall away from one:
+  // before where it stalled), turning the proximal end by k * recovery_turn_rad on the k-th, then advance
+  // again under the controller. At most K pull-backs; the procedure may run recovery_time_s of
+  // simulated time past the strict step limit.
+  int recovery_attempts = 0;
+  double recovery_retract_mm = 20.0;     // = control_radius_mm: the tip re-enters the control zone at its
+                                         // edge, with the whole zone to re-aim in
+  double recovery_pull_mm_per_s = 10.0;  // retraction speed (the push speed: 0.4 mm per env step)
+  double recovery_turn_rad = 1.5707963267948966;  // pull-back k turns the proximal end by k times this while
+                                         // pulling: with a quarter turn the tip's bend leaves the fork a
+                                         // quarter turn apart on each of the 4 approaches (0, 90, 270, 180
+                                         // deg for K = 3). A controller that re-aims only starts its sweep
+                                         // elsewhere; one that never turns (push-only) would otherwise retry
+                                         // the same approach (half turns: the 3rd retry repeats the 1st)
+  double recovery_time_s = 30.0;         // simulated seconds allowed past the strict step limit (3 attempts
+                                         // of ~2.5 s back and ~2.5 s forward each fit with room)
+  // --- Force penalty (issue 37 item 4; 0 = the paper's reward, Eq. 3) ---
+  // Each env step's reward loses this times the step's peak total wall force in newtons (StepInfo::
+  // wall_force_peak_total_mN / 1000): a wire pressed on the wall at 1.5 N (the vessel-rupture threshold
+  // the safety figures use) for a step costs 1.5 x this. Off for the paper's column and the shipped actors.
+  double reward_force_per_N = 0.0;
   // --- Junctions beyond the two-way fork (issue 41; JunctionModel above) ---
   JunctionModel junctions = JunctionModel::kSeparate;
   double close_junction_diameters = 2.0;  // kCombined: forks closer than this many diameters of the vessel

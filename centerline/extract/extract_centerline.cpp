@@ -14,6 +14,7 @@
 #include "centerline/extract/prepare_surface.hpp"
 #include "centerline/extract/refine_branch.hpp"
 #include "centerline/extract/skeleton_tree.hpp"
+#include "centerline/extract/straighten_junction_links.hpp"
 #include "centerline/extract/vessel_wall.hpp"
 
 namespace gw {
@@ -110,6 +111,7 @@ CenterlineGraph extract_centerline(const ClosedSurface& closed, const Centerline
       refined.push_back(refine_branch(c.points, degree[c.a] == 1, degree[c.b] == 1, wall, refinement));
     nodes = tree.nodes;
     recentre_junctions(tree, nodes, refined, wall, opt.spacing);
+    straighten_junction_links(tree, refined, opt.spacing);
   };
   refine_and_recentre();
   // A trifurcation is two skeleton junctions that re-centring puts within a radius of each other:

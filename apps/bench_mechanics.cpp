@@ -1,13 +1,33 @@
-// bench-mechanics [--anatomy STEM] [--push MM_PER_S] [--length MM] [--params F.json] [--friction-torque]: mechanics speed.
+// bench-mechanics [--anatomy STEM] [--push MM_PER_S] [--length MM] [--params F.json] [--friction-torque]
+//                 [--heart-rate BPM [--motion FILE]]: mechanics speed.
 // Prints one JSON object: a full insertion into a committed anatomy (coronary by default) with the
-// per-stage breakdown, and the cost per integration sub-step for 50, 100, 200 and 400 nodes.
+// per-stage breakdown, and the cost per integration sub-step for 50, 100, 200 and 400 nodes. With a
+// heart rate, the same insertion again in the beating vessel (issue 36) in the same run, under
+// "beating", with its steps per second against the static run's. The motion: FILE (a cardiac motion
+// JSON, engine/scene/wall_motion.hpp), or by default the generator's coronary field (12% radial
+// contraction, 10% axial shortening, 2.5 deg/cm twist about -z through the origin: the field of
+// anatomies/test/coronary_deformed) held still at the inlet (the guide catheter's frame).
 #include <CLI/CLI.hpp>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "engine/mesh/load_mesh.hpp"
+#include "engine/scene/moving_wall.hpp"
 #include "engine/sim/mechanics_benchmark.hpp"
+
+namespace {
+
+// Largest vertex displacement of a moving scene at time t [mm].
+double largest_displacement(const gw::VesselScene& scene, double t) {
+  double d = 0;
+  for (Eigen::Index i = 0; i < scene.mesh.V.rows(); ++i)
+    d = std::max(d, (gw::wall_vertex_position(*scene.motion, scene.mesh, static_cast<int>(i), t) -
+                     scene.mesh.V.row(i).transpose()).norm());
+  return d;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"Benchmark the guidewire mechanics"};
@@ -16,6 +36,8 @@ int main(int argc, char** argv) {
   int scaling_substeps = 2000;
   std::string params_path;
   bool friction_torque = false;
+  double heart_rate = 0;
+  std::string motion_path;
   app.add_option("--anatomy", stem, "anatomy path without extension (STEM.stl, STEM.truth.json)");
   app.add_option("--push", push, "insertion speed [mm/s]");
   app.add_option("--length", length, "inserted length to reach [mm]");
@@ -23,6 +45,8 @@ int main(int argc, char** argv) {
   app.add_option("--scaling-substeps", scaling_substeps, "timed sub-steps per node count");
   app.add_option("--params", params_path, "wire parameter JSON (default: the built-in 0.014 inch wire)");
   app.add_flag("--friction-torque", friction_torque, "friction at the wire surface (turns the wire; default off)");
+  app.add_option("--heart-rate", heart_rate, "also run the insertion in the beating vessel at this rate [bpm]");
+  app.add_option("--motion", motion_path, "cardiac motion JSON (default: the generator's coronary field)");
   CLI11_PARSE(app, argc, argv);
   try {
     std::ifstream in(stem + ".truth.json");
@@ -38,13 +62,56 @@ int main(int argc, char** argv) {
     gw::WireParams params = params_path.empty() ? gw::default_wire_params() : gw::load_wire_params(params_path);
     if (friction_torque) params.friction_torque = true;
     const gw::WireModel model = gw::make_wire_model(params, 0.01);
+    auto insertion = [&](const gw::InsertionBenchmark& b) {
+      const double sub = b.substeps > 0 ? b.substeps : 1;
+      auto us = [&](double s) { return 1e6 * s / sub; };
+      nlohmann::json stages = {{"detect_us", us(b.stages.detect_s)},
+                               {"assemble_us", us(b.stages.assemble_s)},
+                               {"solve_us", us(b.stages.solve_s)},
+                               {"constraints_us", us(b.stages.constraints_s)}};
+      return nlohmann::json{{"ok", b.ok},
+                            {"problem", b.problem},
+                            {"inserted_mm", b.inserted_mm},
+                            {"free_nodes_at_end", b.free_nodes_end},
+                            {"control_steps", b.control_steps},
+                            {"substeps", b.substeps},
+                            {"control_steps_per_s", b.control_steps / b.seconds},
+                            {"substeps_per_s", b.substeps / b.seconds},
+                            {"mean_contacts", b.mean_contacts},
+                            {"max_contacts", b.max_contacts},
+                            {"mean_max_pgs_sweeps", b.mean_pgs_sweeps},
+                            {"max_penetration_mm", b.max_penetration_mm},
+                            {"split_substeps", b.split_substeps},
+                            {"us_per_substep_by_stage", stages},
+                            {"tip", {b.tip.x(), b.tip.y(), b.tip.z()}}};
+    };
     const gw::InsertionBenchmark b = gw::run_insertion_benchmark(model, scene, inlet, dir, roll, push, length);
-    const double sub = b.substeps > 0 ? b.substeps : 1;
-    auto us = [&](double s) { return 1e6 * s / sub; };
-    nlohmann::json stages = {{"detect_us", us(b.stages.detect_s)},
-                             {"assemble_us", us(b.stages.assemble_s)},
-                             {"solve_us", us(b.stages.solve_s)},
-                             {"constraints_us", us(b.stages.constraints_s)}};
+    nlohmann::json beating;
+    if (heart_rate > 0) {
+      gw::CardiacMotion cm;
+      if (!motion_path.empty()) {
+        cm = gw::load_cardiac_motion(motion_path);
+      } else {
+        cm.axis_origin = Eigen::Vector3d::Zero();
+        cm.axis_direction = Eigen::Vector3d(0, 0, -1);
+        cm.contraction_mm = 0.12;  // fractions of a 1 mm reference: the generator's 12% and 10%
+        cm.reference_radius_mm = 1.0;
+        cm.shortening_mm = 0.1;
+        cm.reference_length_mm = 1.0;
+        cm.twist_deg_per_cm = 2.5;
+        cm.has_fixed_point = true;
+        cm.fixed_point = inlet;
+      }
+      cm.heart_rate_bpm = heart_rate;
+      const gw::VesselScene moving = gw::attach_wall_motion(scene, gw::cardiac_wall_motion(scene.mesh, cm));
+      const gw::InsertionBenchmark bb = gw::run_insertion_benchmark(model, moving, inlet, dir, roll, push, length);
+      beating = {{"heart_rate_bpm", heart_rate},
+                 {"motion", motion_path.empty() ? "generator coronary field, fixed at the inlet" : motion_path},
+                 {"end_systolic_wall_displacement_mm", largest_displacement(moving, 60.0 / heart_rate * cm.systole_fraction)},
+                 {"insertion", insertion(bb)},
+                 {"control_steps_per_s_beating_over_static",
+                  (bb.control_steps / bb.seconds) / (b.control_steps / b.seconds)}};
+    }
     nlohmann::json scaling = nlohmann::json::array();
     for (const gw::ScalingPoint& p : gw::run_scaling_benchmark({50, 100, 200, 400}, scaling_substeps))
       scaling.push_back({{"nodes", p.nodes}, {"free_nodes", p.free_nodes}, {"us_per_substep", p.us_per_substep}});
@@ -56,23 +123,9 @@ int main(int argc, char** argv) {
         {"substeps_per_step", model.substeps},
         {"push_mm_per_s", push},
         {"friction_torque", model.params.friction_torque},
-        {"insertion",
-         {{"ok", b.ok},
-          {"problem", b.problem},
-          {"inserted_mm", b.inserted_mm},
-          {"free_nodes_at_end", b.free_nodes_end},
-          {"control_steps", b.control_steps},
-          {"substeps", b.substeps},
-          {"control_steps_per_s", b.control_steps / b.seconds},
-          {"substeps_per_s", b.substeps / b.seconds},
-          {"mean_contacts", b.mean_contacts},
-          {"max_contacts", b.max_contacts},
-          {"mean_max_pgs_sweeps", b.mean_pgs_sweeps},
-          {"max_penetration_mm", b.max_penetration_mm},
-          {"split_substeps", b.split_substeps},
-          {"us_per_substep_by_stage", stages},
-          {"tip", {b.tip.x(), b.tip.y(), b.tip.z()}}}},
+        {"insertion", insertion(b)},
         {"scaling_free_space", scaling}};
+    if (heart_rate > 0) out["beating"] = beating;
     std::cout << out.dump() << "\n";
   } catch (const std::exception& e) {
     std::cerr << "bench-mechanics: " << e.what() << "\n";

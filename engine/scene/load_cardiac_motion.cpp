@@ -23,7 +23,7 @@ CardiacMotion load_cardiac_motion(const std::string& path) {
   static const std::set<std::string> known = {
       "heart_rate_bpm", "systole_fraction", "phase_offset",        "axis_origin",    "axis_direction",
       "contraction_mm", "reference_radius_mm", "shortening_mm",    "reference_length_mm", "twist_deg_per_cm",
-      "rotation_deg",   "translation_mm",   "comment"};
+      "rotation_deg",   "translation_mm",   "fixed_point", "comment"};
   for (const auto& item : j.items())
     if (!known.count(item.key())) throw std::runtime_error(path + ": unknown key \"" + item.key() + "\"");
   CardiacMotion m;
@@ -51,6 +51,10 @@ CardiacMotion load_cardiac_motion(const std::string& path) {
   number("twist_deg_per_cm", m.twist_deg_per_cm);
   number("rotation_deg", m.rotation_deg);
   vec3("translation_mm", m.translation_mm);
+  if (j.contains("fixed_point")) {
+    vec3("fixed_point", m.fixed_point);
+    m.has_fixed_point = true;
+  }
   return m;
 }
 

@@ -99,23 +99,24 @@ WallMotion cardiac_wall_motion(const TriangleMesh& rest, const CardiacMotion& p)
   m.twist_rad_per_mm = p.twist_deg_per_cm * M_PI / 180.0 / 10.0;
   m.rotation_rad = p.rotation_deg * M_PI / 180.0;
   m.translation = p.translation_mm;
+  if (p.has_fixed_point && !p.fixed_point.allFinite())
+    throw std::invalid_argument("wall motion: the fixed point must be finite");
+  m.has_fixed_point = p.has_fixed_point;
+  m.fixed_point = p.fixed_point;
   // |x_i(s1) - x_i(s0)| <= |s1 - s0| B_i with B_i = (|rc| + |theta_i|) r_i + |as| |h_i| + |T|, theta_i the
   // end-systolic angle (a rotation by angle s theta and the scaling (1 - s rc), see wall_motion.hpp).
-  m.travel_per_activation = 0;
-  for (Eigen::Index i = 0; i < rest.V.rows(); ++i) {
-    const Eigen::Vector3d y = rest.V.row(i).transpose() - m.centre;
+  auto travel_bound = [&](const Eigen::Vector3d& X) {
+    const Eigen::Vector3d y = X - m.centre;
     const double h = y.dot(m.axis), r = (y - h * m.axis).norm();
     const double theta = std::abs(m.twist_rad_per_mm * h + m.rotation_rad);
-    m.travel_per_activation = std::max(m.travel_per_activation, (std::abs(m.contraction) + theta) * r +
-                                                                    std::abs(m.shortening * h) +
-                                                                    m.translation.norm());
-  }
-  // Jacobian of D inside the cylinder r <= r_max, |h| <= h_max: the radial block R (1 - s rc) - I has norm
-  // <= s (|rc| + |theta|), the axial column <= s (|twist| r_max (1 + |rc|) + |as|); |rc| < 0.5.
+    return (std::abs(m.contraction) + theta) * r + std::abs(m.shortening * h) + m.translation.norm();
+  };
+  m.travel_per_activation = 0;
+  for (Eigen::Index i = 0; i < rest.V.rows(); ++i)
+    m.travel_per_activation = std::max(m.travel_per_activation, travel_bound(rest.V.row(i).transpose()));
+  if (m.has_fixed_point) m.travel_per_activation += travel_bound(m.fixed_point);
   m.radius_limit = r_max;
   m.height_limit = h_max;
-  m.lipschitz_per_activation = std::abs(m.contraction) + std::abs(m.twist_rad_per_mm) * (h_max + 1.5 * r_max) +
-                               std::abs(m.rotation_rad) + std::abs(m.shortening);
   finish_wall_motion(rest, m);
   return m;
 }

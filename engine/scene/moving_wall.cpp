@@ -14,36 +14,50 @@ namespace gw {
 namespace {
 
 // Current vertex positions and vertex normals of one (motion, time), computed on first use. Per thread,
-// so concurrent episodes never share it; a pure accelerator (the same values without it).
+// so concurrent episodes never share it; a pure accelerator (the same values without it). A sub-step
+// asks for three times in turn (its start, its middle, its end = the next start): three slots.
 struct CurrentWallCache {
   long id = -1;
   double t = std::numeric_limits<double>::quiet_NaN();
   int epoch = 0;
+  long used = 0;
+  WallTime at;
   std::vector<int> stamp, normal_stamp;
   std::vector<Eigen::Vector3d> x, n;
 };
 
 CurrentWallCache& cache_for(const VesselScene& s, double t) {
-  thread_local CurrentWallCache c;
+  thread_local CurrentWallCache slots[3];
+  thread_local long clock = 0;
   const WallMotion& m = *s.motion;
-  if (c.id != m.id || !(c.t == t)) {
-    if (static_cast<int>(c.stamp.size()) != m.vertices || c.epoch == std::numeric_limits<int>::max()) {
-      c.stamp.assign(m.vertices, 0);
-      c.normal_stamp.assign(m.vertices, 0);
-      c.x.resize(m.vertices);
-      c.n.resize(m.vertices);
-      c.epoch = 0;
+  ++clock;
+  for (CurrentWallCache& c : slots)
+    if (c.id == m.id && c.t == t) {
+      c.used = clock;
+      return c;
     }
-    ++c.epoch;
-    c.id = m.id;
-    c.t = t;
+  CurrentWallCache* oldest = &slots[0];
+  for (CurrentWallCache& c : slots)
+    if (c.used < oldest->used) oldest = &c;
+  CurrentWallCache& c = *oldest;
+  if (static_cast<int>(c.stamp.size()) != m.vertices || c.epoch == std::numeric_limits<int>::max()) {
+    c.stamp.assign(m.vertices, 0);
+    c.normal_stamp.assign(m.vertices, 0);
+    c.x.resize(m.vertices);
+    c.n.resize(m.vertices);
+    c.epoch = 0;
   }
+  ++c.epoch;
+  c.id = m.id;
+  c.t = t;
+  c.at = wall_time(m, t);
+  c.used = clock;
   return c;
 }
 
 const Eigen::Vector3d& vertex(CurrentWallCache& c, const VesselScene& s, int i) {
   if (c.stamp[i] != c.epoch) {
-    c.x[i] = wall_vertex_position(*s.motion, s.mesh, i, c.t);
+    c.x[i] = wall_vertex_position(*s.motion, s.mesh, i, c.at);
     c.stamp[i] = c.epoch;
   }
   return c.x[i];
@@ -221,11 +235,10 @@ Eigen::Vector3d wall_point_velocity(const VesselScene& scene, int triangle, cons
     wb = (d11 * d20 - d01 * d21) / den;
     wc = (d00 * d21 - d01 * d20) / den;
   }
-  const WallMotion& m = *scene.motion;
-  // The end positions are evaluated directly: the per-thread cache holds time t.
-  const Eigen::Vector3d a1 = wall_vertex_position(m, scene.mesh, scene.mesh.F(triangle, 0), t + h),
-                        b1 = wall_vertex_position(m, scene.mesh, scene.mesh.F(triangle, 1), t + h),
-                        c1 = wall_vertex_position(m, scene.mesh, scene.mesh.F(triangle, 2), t + h);
+  CurrentWallCache& end = cache_for(scene, t + h);  // (another slot: `cache` stays valid)
+  const Eigen::Vector3d a1 = vertex(end, scene, scene.mesh.F(triangle, 0)),
+                        b1 = vertex(end, scene, scene.mesh.F(triangle, 1)),
+                        c1 = vertex(end, scene, scene.mesh.F(triangle, 2));
   return ((1 - wb - wc) * (a1 - a) + wb * (b1 - b) + wc * (c1 - c)) / h;
 }
 

@@ -10,7 +10,8 @@
 //            (centerline/vessel_tree/deformation.hpp) plus a rotation and a translation:
 //              y = X - c, h = y.a, y_r = y - h a,  theta = s (twist h + rotation)
 //              x = c + R_a(theta) (1 - s rc) y_r + (1 - s as) h a + s T
-//            rc = contraction_mm / reference radius, as = shortening_mm / reference length
+//            rc = contraction_mm / reference radius, as = shortening_mm / reference length; with a
+//            fixed point F, D(X) - D(F) (the wall seen from a frame that moves with F)
 //   phases   N surfaces of the same vertex order at phases j / N (4D CT), linearly interpolated in phase.
 // phase(t) = frac(phase_offset + t * heart_rate_bpm / 60), so 0 bpm freezes the wall at phase_offset.
 // Cardiac waveform (cardiac_activation), with systole fraction S (default 1/3 of the cycle):
@@ -43,6 +44,10 @@ struct CardiacMotion {
   double twist_deg_per_cm = 0;     // torsion: rotation about a growing with h
   double rotation_deg = 0;         // rotation about the axis, uniform
   Eigen::Vector3d translation_mm = Eigen::Vector3d::Zero();
+  // Optional point held still (the displacement there subtracted everywhere): e.g. the guide catheter's
+  // tip engaged in the ostium, so the simulation runs in the catheter's frame and the introducer stays put.
+  bool has_fixed_point = false;
+  Eigen::Vector3d fixed_point = Eigen::Vector3d::Zero();
 };
 
 struct WallMotion {
@@ -57,8 +62,9 @@ struct WallMotion {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero(), axis = Eigen::Vector3d::UnitZ();
   double contraction = 0, shortening = 0, twist_rad_per_mm = 0, rotation_rad = 0;
   Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+  bool has_fixed_point = false;
+  Eigen::Vector3d fixed_point = Eigen::Vector3d::Zero();  // D(fixed_point) is subtracted from every D
   double travel_per_activation = 0;  // max over vertices of the bound B_i: |x_i(s1) - x_i(s0)| <= |s1 - s0| B_i
-  double lipschitz_per_activation = 0;  // |D(X) - D(Y)| <= s L |X - Y| inside the cylinder below
   double radius_limit = 0, height_limit = 0;  // cylinder around the axis holding every vertex
   // phases: per frame, the displacement of every vertex from the rest mesh
   std::vector<Eigen::MatrixX3d> frames;
@@ -88,13 +94,24 @@ WallMotion phase_wall_motion(const TriangleMesh& rest, const std::vector<Eigen::
 
 // A motion JSON file: {"heart_rate_bpm": 72, "systole_fraction": 0.33, "axis_origin": [x, y, z],
 // "axis_direction": [..], "contraction_mm": 2, "shortening_mm": 1, "twist_deg_per_cm": 3,
-// "rotation_deg": 4, "translation_mm": [..], ...} (the CardiacMotion fields; missing ones keep their
+// "rotation_deg": 4, "translation_mm": [..], "fixed_point": [..], ...} (the CardiacMotion fields; missing ones keep their
 // defaults). Throws std::runtime_error "<file>: <problem>" for an unreadable file, an unknown key or a
 // bad value.
 CardiacMotion load_cardiac_motion(const std::string& path);
 
 // Current position of rest vertex `vertex` at time t (computed as X + D, so exactly X when D = 0).
 Eigen::Vector3d wall_vertex_position(const WallMotion& m, const TriangleMesh& rest, int vertex, double t);
+
+// The per-time part of D (activation, the fixed point's or rigid displacement, the frame pair), so
+// that many vertices at one time cost one evaluation of it: wall_vertex_position(m, rest, i, t) ==
+// wall_vertex_position(m, rest, i, wall_time(m, t)), bit for bit.
+struct WallTime {
+  double t = 0, s = 0, a = 0;  // time, activation (cardiac), weight of frame j + 1 (phases)
+  int j = 0;                   // phases: the frame before t
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero();  // rigid: D(t); cardiac: D of the fixed point
+};
+WallTime wall_time(const WallMotion& m, double t);
+Eigen::Vector3d wall_vertex_position(const WallMotion& m, const TriangleMesh& rest, int vertex, const WallTime& at);
 
 // The field at an arbitrary rest point X (rigid and cardiac; false for phases, which only know vertices).
 bool wall_field_position(const WallMotion& m, const Eigen::Vector3d& X, double t, Eigen::Vector3d& x);
@@ -104,8 +121,9 @@ double wall_max_displacement(const WallMotion& m, double t);
 double wall_max_travel(const WallMotion& m, double t0, double t1);
 
 // A ball of the REST configuration holding every rest triangle whose current (time t) triangle comes
-// within r of p: through the field's inverse (p pulled back by fixed-point iteration, the radius grown
-// by the field's Lipschitz bound) where the field allows, else centre p and radius r + max |D|.
+// within r of p: through the field's inverse (rigid: exact; cardiac: p pulled back by fixed-point
+// iteration, the radius r grown by the map's smallest stretch and curvature, see the .cpp), else centre
+// p and radius r + max |D| (phase surfaces).
 void rest_query_ball(const WallMotion& m, const Eigen::Vector3d& p, double r, double t, Eigen::Vector3d& centre,
                      double& radius);
 

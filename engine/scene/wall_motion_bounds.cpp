@@ -2,6 +2,9 @@
 // Inputs: the motion, times [s]; for the query a current point p and radius r [mm]. Outputs: upper
 // bounds over the vertices of |D(t)| and |x(t1) - x(t0)| [mm]; a rest-configuration ball (centre,
 // radius) holding every rest triangle whose current triangle comes within r of p.
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 
@@ -15,6 +18,19 @@ const double kRounding = 1e-8;  // mm: floating-point slack of X + D against the
 
 Eigen::Vector3d rigid_displacement(const WallMotion& m, double t) {
   return m.velocity * t + m.amplitude * std::sin(2.0 * M_PI * cardiac_phase(m, t));
+}
+
+// Jacobian of the cardiac map x(X) at activation s (see rest_query_ball); `radial` gets y_r.
+Eigen::Matrix3d cardiac_jacobian(const WallMotion& m, const Eigen::Vector3d& X, double s, Eigen::Vector3d& radial) {
+  const Eigen::Vector3d y = X - m.centre;
+  const double h = y.dot(m.axis);
+  radial = y - h * m.axis;
+  const double theta = s * (m.twist_rad_per_mm * h + m.rotation_rad);
+  const Eigen::Matrix3d rot = Eigen::AngleAxisd(theta, m.axis).toRotationMatrix();
+  const Eigen::Matrix3d proj = Eigen::Matrix3d::Identity() - m.axis * m.axis.transpose();
+  const Eigen::Vector3d q = rot * ((1.0 - s * m.contraction) * radial);
+  return (1.0 - s * m.contraction) * rot * proj + (1.0 - s * m.shortening) * m.axis * m.axis.transpose() +
+         (s * m.twist_rad_per_mm) * m.axis.cross(q) * m.axis.transpose();
 }
 
 double activation(const WallMotion& m, double t) {
@@ -80,24 +96,44 @@ void rest_query_ball(const WallMotion& m, const Eigen::Vector3d& p, double r, do
     return;
   }
   if (m.kind == WallMotionKind::cardiac) {
-    // x = X + D(X) with |D(X) - D(Y)| <= L |X - Y| (L = s L1 < 1) inside the cylinder of the vertices.
-    // X* = p - D(X*) by fixed-point iteration, e = |X* + D(X*) - p|. A current triangle point
-    // y = sum w_i x_i within r of p has its rest point Y = sum w_i X_i within
-    // (r + e + L max_edge) / (1 - L) of X*: |Y - X*| <= |y - p| + e + L sum w_i |X_i - X*|.
-    const double L = activation(m, t) * m.lipschitz_per_activation;
-    if (L < 0.5) {
-      Eigen::Vector3d X = p, x;
-      for (int it = 0; it < 4; ++it) {
-        wall_field_position(m, X, t, x);
-        X -= x - p;
-      }
+    // Pull p back: X* with x(X*) = p by Newton's method, e = |x(X*) - p|. The map x = X + D has the
+    // Jacobian J(X) = R(theta)(1 - s rc) P + (1 - s as) a a^T + s twist (a x q) a^T (P = I - a a^T,
+    // q = R(theta)(1 - s rc) y_r) and second derivatives bounded by K = 1.5 s twist (1 + s twist r)
+    // (only the twist bends the map; |rc| < 0.5). A current triangle point y = sum w_i x(X_i) within r of
+    // p: its rest point Y = sum w_i X_i has |x(Y) - y| <= K d^2 / 2 (linear interpolation, d the longest
+    // edge), so |x(Y) - x(X*)| <= rho = r + e + K d^2 / 2, while |x(Y) - x(X*)| >= sigma z - K z^2 / 2
+    // (z = |Y - X*|, sigma the smallest singular value of J(X*)). Hence z <= z1 or z >= z2, the roots of
+    // K z^2 / 2 - sigma z + rho; z2 beyond the global bound r + |p - X*| + max |D| leaves z <= z1.
+    const double s = activation(m, t);
+    Eigen::Vector3d X = p, x;
+    Eigen::Vector3d radial;
+    Eigen::Matrix3d jac;
+    wall_field_position(m, X, t, x);
+    X = p - (x - p);  // X - D(X) ~ the inverse; then Newton steps
+    for (int it = 0; it < 5; ++it) {
       wall_field_position(m, X, t, x);
-      const double e = (x - p).norm();
-      const Eigen::Vector3d y = X - m.centre;
-      const double h = y.dot(m.axis);
-      if (std::abs(h) <= m.height_limit && (y - h * m.axis).norm() <= m.radius_limit) {
+      jac = cardiac_jacobian(m, X, s, radial);
+      if ((x - p).norm() < 1e-12) break;
+      X -= jac.partialPivLu().solve(x - p);
+    }
+    wall_field_position(m, X, t, x);
+    jac = cardiac_jacobian(m, X, s, radial);
+    const double e = (x - p).norm();
+    const double sigma = Eigen::JacobiSVD<Eigen::Matrix3d>(jac).singularValues()(2);
+    const double st = s * std::abs(m.twist_rad_per_mm);
+    const double K = 1.5 * st * (1.0 + st * std::max(m.radius_limit, radial.norm()));
+    const double rho = r + e + 0.5 * K * m.max_edge_mm * m.max_edge_mm;
+    const double global = r + (p - X).norm() + wall_max_displacement(m, t);
+    if (std::isfinite(e) && sigma > 0.1) {
+      if (K == 0) {
         centre = X;
-        radius = (r + e + L * m.max_edge_mm) / (1 - L) + kRounding;
+        radius = rho / sigma + kRounding;
+        return;
+      }
+      const double disc = sigma * sigma - 2.0 * K * rho;
+      if (disc > 0 && (sigma + std::sqrt(disc)) / K > global) {
+        centre = X;
+        radius = std::min(global, (sigma - std::sqrt(disc)) / K) + kRounding;
         return;
       }
     }

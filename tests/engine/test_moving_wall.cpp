@@ -3,6 +3,7 @@
 // (0 bpm, zero amplitude) stepping like today's rigid wall.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <fstream>
 #include <algorithm>
 #include <random>
 
@@ -223,4 +224,66 @@ TEST_CASE("wall motion inputs are checked", "[moving_wall]") {
   const TriangleMesh other = swept_tube_mesh(Eigen::MatrixX3d(Eigen::Matrix<double, 2, 3>{{0, 0, 0}, {5, 0, 0}}), 1.0, 8);
   CHECK_THROWS_WITH(attach_wall_motion(scene, rigid_wall_motion(other, Eigen::Vector3d(1, 0, 0), Eigen::Vector3d::Zero(), 0)),
                     Catch::Contains("another mesh"));
+}
+
+TEST_CASE("the rest-configuration query goes through the field's inverse, not the global bound", "[moving_wall]") {
+  // The generator's coronary field (12% contraction, 10% shortening, 2.5 deg/cm twist) on a tube 30 mm
+  // from the axis: at end-systole the wall moves by millimetres, yet a 0.8 mm query needs a rest ball
+  // barely larger (the map's smallest stretch and curvature), centred on p's pre-image.
+  Eigen::MatrixX3d c(40, 3);
+  for (int i = 0; i < 40; ++i) c.row(i) << 30.0, -20.0 + i, 40.0 - 2.0 * i;
+  const TriangleMesh rest = swept_tube_mesh(c, 1.5, 24);
+  CardiacMotion field;
+  field.heart_rate_bpm = 60;
+  field.axis_direction = Eigen::Vector3d(0, 0, -1);
+  field.contraction_mm = 0.12;
+  field.reference_radius_mm = 1;
+  field.shortening_mm = 0.1;
+  field.reference_length_mm = 1;
+  field.twist_deg_per_cm = 2.5;
+  const WallMotion m = cardiac_wall_motion(rest, field);
+  const double t = 1.0 / 3.0;  // end-systole
+  REQUIRE(wall_max_displacement(m, t) > 3.0);
+  for (int v : {0, 100, 500, 900}) {
+    const Eigen::Vector3d p = wall_vertex_position(m, rest, v, t);
+    Eigen::Vector3d centre;
+    double radius = 0;
+    rest_query_ball(m, p, 0.8, t, centre, radius);
+    CHECK(radius < 1.2);
+    CHECK((centre - rest.V.row(v).transpose()).norm() < 1e-6);
+  }
+}
+
+TEST_CASE("a cardiac motion file is read, and its mistakes named", "[moving_wall]") {
+  const std::string path = std::string(GW_BINARY_DIR) + "/test_motion.json";
+  {
+    std::ofstream out(path);
+    out << R"({"heart_rate_bpm": 72, "axis_origin": [1, 2, 3], "axis_direction": [0, 0, -1], "contraction_mm": 2,
+              "twist_deg_per_cm": 2.5, "translation_mm": [0, 1, 0], "fixed_point": [4, 5, 6]})";
+  }
+  const CardiacMotion m = load_cardiac_motion(path);
+  CHECK(m.heart_rate_bpm == 72);
+  CHECK(m.axis_origin == Eigen::Vector3d(1, 2, 3));
+  CHECK(m.contraction_mm == 2);
+  CHECK(m.has_fixed_point);
+  CHECK(m.fixed_point == Eigen::Vector3d(4, 5, 6));
+  CHECK(m.systole_fraction == Approx(1.0 / 3));
+  {
+    std::ofstream out(path);
+    out << R"({"heart_rate": 72})";
+  }
+  CHECK_THROWS_WITH(load_cardiac_motion(path), Catch::Contains("unknown key \"heart_rate\""));
+  {
+    std::ofstream out(path);
+    out << R"({"translation_mm": [0, 1]})";
+  }
+  CHECK_THROWS_WITH(load_cardiac_motion(path), Catch::Contains("three numbers"));
+  // A fixed point stays put.
+  const TriangleMesh rest = bent_tube();
+  CardiacMotion held = strong_beat();
+  held.has_fixed_point = true;
+  held.fixed_point = rest.V.row(7).transpose();
+  const WallMotion w = cardiac_wall_motion(rest, held);
+  CHECK((wall_vertex_position(w, rest, 7, 0.3) - rest.V.row(7).transpose()).norm() < 1e-12);
+  CHECK((wall_vertex_position(w, rest, 700, 0.3) - rest.V.row(700).transpose()).norm() > 0.1);
 }

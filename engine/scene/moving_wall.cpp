@@ -13,6 +13,12 @@ namespace gw {
 
 namespace {
 
+// The current corners, unit normal and bounding sphere of face f (make_vessel_scene's formulas).
+struct Face {
+  Eigen::Vector3d a, b, c, n, centre;
+  double radius;
+};
+
 // Current vertex positions and vertex normals of one (motion, time), computed on first use. Per thread,
 // so concurrent episodes never share it; a pure accelerator (the same values without it). A sub-step
 // asks for three times in turn (its start, its middle, its end = the next start): three slots.
@@ -22,8 +28,9 @@ struct CurrentWallCache {
   int epoch = 0;
   long used = 0;
   WallTime at;
-  std::vector<int> stamp, normal_stamp;
+  std::vector<int> stamp, normal_stamp, face_stamp;
   std::vector<Eigen::Vector3d> x, n;
+  std::vector<Face> faces;
 };
 
 CurrentWallCache& cache_for(const VesselScene& s, double t) {
@@ -40,11 +47,14 @@ CurrentWallCache& cache_for(const VesselScene& s, double t) {
   for (CurrentWallCache& c : slots)
     if (c.used < oldest->used) oldest = &c;
   CurrentWallCache& c = *oldest;
-  if (static_cast<int>(c.stamp.size()) != m.vertices || c.epoch == std::numeric_limits<int>::max()) {
+  if (static_cast<int>(c.stamp.size()) != m.vertices || c.face_stamp.size() != static_cast<std::size_t>(s.mesh.F.rows()) ||
+      c.epoch == std::numeric_limits<int>::max()) {
     c.stamp.assign(m.vertices, 0);
     c.normal_stamp.assign(m.vertices, 0);
     c.x.resize(m.vertices);
     c.n.resize(m.vertices);
+    c.face_stamp.assign(s.mesh.F.rows(), 0);
+    c.faces.resize(s.mesh.F.rows());
     c.epoch = 0;
   }
   ++c.epoch;
@@ -63,14 +73,11 @@ const Eigen::Vector3d& vertex(CurrentWallCache& c, const VesselScene& s, int i) 
   return c.x[i];
 }
 
-// The current corners, unit normal and bounding sphere of face f (make_vessel_scene's formulas).
-struct Face {
-  Eigen::Vector3d a, b, c, n, centre;
-  double radius;
-};
 
-Face face(CurrentWallCache& cache, const VesselScene& s, int f) {
-  Face r;
+const Face& face(CurrentWallCache& cache, const VesselScene& s, int f) {
+  if (cache.face_stamp[f] == cache.epoch) return cache.faces[f];
+  cache.face_stamp[f] = cache.epoch;
+  Face& r = cache.faces[f];
   r.a = vertex(cache, s, s.mesh.F(f, 0));
   r.b = vertex(cache, s, s.mesh.F(f, 1));
   r.c = vertex(cache, s, s.mesh.F(f, 2));
@@ -89,7 +96,7 @@ const Eigen::Vector3d& vertex_normal(CurrentWallCache& c, const VesselScene& s, 
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (int k = m.vertex_face_begin[i]; k < m.vertex_face_begin[i + 1]; ++k) {
     const int f = m.vertex_face[k], corner = m.vertex_corner[k];
-    const Face fd = face(c, s, f);
+    const Face& fd = face(c, s, f);
     const Eigen::Vector3d p0 = vertex(c, s, s.mesh.F(f, corner)), p1 = vertex(c, s, s.mesh.F(f, (corner + 1) % 3)),
                           p2 = vertex(c, s, s.mesh.F(f, (corner + 2) % 3));
     const Eigen::Vector3d e1 = p1 - p0, e2 = p2 - p0;
@@ -122,7 +129,7 @@ WallDistance wall_distance_among_at(const VesselScene& scene, double t, const Ei
   int best_position = -1;
   auto consider = [&](int position) {
     const int f = triangles[position];
-    const Face fd = face(cache, scene, f);
+    const Face& fd = face(cache, scene, f);
     const double dc = (p - fd.centre).norm() - fd.radius;
     if (dc > 0 && dc * dc > best_d2 * (1 + 1e-12)) return;
     int region = 0;
@@ -191,7 +198,7 @@ void triangles_near_at(const VesselScene& scene, double t, const Eigen::Vector3d
   for (const int f : out) {
     const Eigen::Vector4d& rest = scene.face_spheres[f];
     if ((centre - rest.head<3>()).norm() - rest[3] > rest_radius) continue;  // cannot come near p
-    const Face fd = face(cache, scene, f);
+    const Face& fd = face(cache, scene, f);
     const double d = (p - fd.centre).norm() - fd.radius;
     if (d > radius) continue;
     out[kept++] = f;
@@ -211,7 +218,7 @@ WallDistance wall_distance_at(const VesselScene& scene, double t, const Eigen::V
   double upper = std::numeric_limits<double>::infinity();
   if (tri >= 0) {
     CurrentWallCache& cache = cache_for(scene, t);
-    const Face fd = face(cache, scene, tri);
+    const Face& fd = face(cache, scene, tri);
     int region = 0;
     upper = (p - closest_point_on_triangle(p, fd.a, fd.b, fd.c, region)).norm();
   }

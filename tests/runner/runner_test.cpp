@@ -347,7 +347,9 @@ TEST_CASE("controllers: the scripted omega rule in both turn directions", "[runn
 
 TEST_CASE("evaluation table: the paper's rows and a Markdown table that says why rows fall short", "[runner]") {
   const auto rows = gw::paper_table();
-  REQUIRE(rows.size() == 10);
+  REQUIRE(rows.size() == 12);  // the paper's 10, then the two junction rows beyond it (issue 41)
+  CHECK(rows[10].name == "trifurcation tree");
+  CHECK(rows[11].paper_success < 0);  // no paper figure: "—" in the table
   CHECK(rows[0].episodes == 100);
   CHECK(rows[4].paper_success == Approx(0.62));
   CHECK(rows[1].base_policy);

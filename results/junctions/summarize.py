@@ -1,0 +1,97 @@
+"""Tables of results/junctions/README.md from the evaluate runs beside this file (standard library only).
+
+separate/, separate_close/: `evaluate --rows ...` with the paper's junction reading (every controller, ceiling);
+combined/, combined_close/: the same rows and seeds with `--junctions combined` (the controllers that read omega).
+"""
+import json
+import math
+import os
+from collections import Counter, defaultdict
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+COLUMNS = ["sac-policy", "scripted-omega", "scripted-omega-ccw", "push-only"]
+
+
+def rows(*folders):
+    out = {}
+    for f in folders:
+        path = os.path.join(HERE, f, "results.json")
+        if os.path.exists(path):
+            for r in json.load(open(path))["rows"]:
+                out[r["name"]] = r
+    return out
+
+
+def wilson(k, n, z=1.96):
+    if n == 0:
+        return (0.0, 1.0)
+    p = k / n
+    d = 1 + z * z / n
+    c = (p + z * z / (2 * n)) / d
+    h = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / d
+    return (max(0.0, c - h), min(1.0, c + h))
+
+
+def sign_test(won, lost):
+    n = won + lost
+    if n == 0:
+        return 1.0
+    k = min(won, lost)
+    p = sum(math.comb(n, i) for i in range(k + 1)) / 2 ** n
+    return min(1.0, 2 * p)
+
+
+def cell(summary):
+    k, n = summary["successes"], summary["episodes"]
+    lo, hi = wilson(k, n)
+    return f"{k}/{n} ({100 * k / n:.0f}%, {100 * lo:.0f}-{100 * hi:.0f}%)"
+
+
+def by_episode(summary):
+    return {(e["anatomy"], e["target"], e["seed"]): e["outcome"] == "success" for e in summary["results"]}
+
+
+separate, combined = rows("separate", "separate_close"), rows("combined", "combined_close")
+print("| row | junctions | " + " | ".join(COLUMNS) + " | reached by a controller or rotation schedule |")
+print("|---|---|" + "---|" * (len(COLUMNS) + 1))
+for name in ["trifurcation tree", "closely spaced forks"]:
+    for label, table in (("separate (paper)", separate), ("combined", combined)):
+        r = table.get(name)
+        if r is None:
+            print(f"| {name} | {label} | " + " | ".join("not run" for _ in COLUMNS) + " | |")
+            continue
+        cells = [cell(r["results"][c]) if c in r["results"] else "same as separate (no omega)" for c in COLUMNS]
+        ceiling = r.get("ceiling")
+        ceil = f"{ceiling['reached']}/{ceiling['episodes']}" if ceiling else "—"
+        print(f"| {name} | {label} | " + " | ".join(cells) + f" | {ceil} |")
+
+print("\nSame episodes, combined against separate (won: reached only with combined; lost: only with separate; exact sign test):\n")
+print("| row | column | won | lost | p |")
+print("|---|---|---|---|---|")
+for name in ["trifurcation tree", "closely spaced forks"]:
+    if name not in separate or name not in combined:
+        continue
+    for c in COLUMNS[:3]:
+        if c not in combined[name]["results"]:
+            continue
+        a, b = by_episode(separate[name]["results"][c]), by_episode(combined[name]["results"][c])
+        won = sum(1 for k in a if b.get(k) and not a[k])
+        lost = sum(1 for k in a if a[k] and not b.get(k))
+        print(f"| {name} | {c} | {won} | {lost} | {sign_test(won, lost):.2f} |")
+
+print("\nPer target (SAC, successes/episodes; outcomes of the losses):\n")
+print("| row | target | separate | combined |")
+print("|---|---|---|---|")
+for name in ["trifurcation tree", "closely spaced forks"]:
+    per = defaultdict(dict)
+    for label, table in (("separate", separate), ("combined", combined)):
+        if name not in table:
+            continue
+        eps = table[name]["results"]["sac-policy"]["results"]
+        for t in sorted({e["target"] for e in eps}):
+            mine = [e for e in eps if e["target"] == t]
+            k = sum(e["outcome"] == "success" for e in mine)
+            losses = Counter(e["outcome"] for e in mine if e["outcome"] != "success")
+            per[t][label] = f"{k}/{len(mine)}" + (" (" + ", ".join(f"{o} {n}" for o, n in losses.items()) + ")" if losses else "")
+    for t in sorted(per):
+        print(f"| {name} | T{t} | {per[t].get('separate', '')} | {per[t].get('combined', '')} |")

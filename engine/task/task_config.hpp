@@ -22,7 +22,8 @@ enum class JunctionModel {
               // course within close_junction_diameters vessel diameters (closely spaced forks), and omega
               // is measured against the mean of the wrong directions (a k-way junction: the tip aims
               // away from all of them, reaching -1 where the max could not). Identical to kSeparate on a
-              // two-way fork with no fork close behind it
+              // two-way fork with no fork close behind it; measured worse than kSeparate where two close forks' wrong
+              // branches lie on opposite sides (their mean cancels; results/junctions), so off by default
 };
 
 // The plane omega is measured in (observation.hpp, omega).

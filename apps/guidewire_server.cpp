@@ -22,7 +22,8 @@ int main(int argc, char** argv) {
   gw::ServerOptions options;
   std::string anatomies = "train", index = gw::default_anatomy_index(), wire_json, control_mode = "auto",
               omega_plane = gw::omega_plane_name(gw::TaskConfig{}.omega_plane),
-              junctions = gw::junction_model_name(gw::TaskConfig{}.junctions);
+              junctions = gw::junction_model_name(gw::TaskConfig{}.junctions),
+              task_scale = gw::task_scale_name(gw::TaskConfig{}.task_scale);
   gw::TaskConfig config;
   app.add_option("--port", options.port, "TCP port; 0 picks a free one (printed as the first stdout line)")->required();
   app.add_option("--host", options.host, "address to listen on")->capture_default_str();
@@ -42,6 +43,10 @@ int main(int argc, char** argv) {
   app.add_option("--junctions", junctions,
                  "how a junction's wrong branches enter omega: separate (the paper's) or combined (k-way junctions and "
                  "closely spaced forks aimed at together; with --omega-side: layout obs/4, docs/junctions.md)")
+      ->capture_default_str();
+  app.add_option("--task-scale", task_scale,
+                 "wrong-branch and control-zone lengths: fixed (the paper's millimetres), vessel (from the walls), "
+                 "auto (vessel for an inlet wider than 4 mm in radius; docs/vessel_scale.md)")
       ->capture_default_str();
   app.add_option("--reward-omega-centre", config.reward.omega_centre,
                  "centre of the reward's omega sigmoid (paper Eq. 3: 0.1)")
@@ -70,6 +75,7 @@ int main(int argc, char** argv) {
     config.control_mode = gw::parse_control_mode(control_mode);
     config.omega_plane = gw::parse_omega_plane(omega_plane);
     config.junctions = gw::parse_junction_model(junctions);
+    config.task_scale = gw::parse_task_scale(task_scale);
     gw::observation_layout(config);  // refuses omega_side in the paper's plane, naming why
     const gw::WireParams wire = wire_json.empty() ? gw::default_wire_params() : gw::load_wire_params(wire_json);
     const gw::NavigationTask task = gw::make_navigation_task(config, wire, gw::load_indexed_anatomies(anatomies, index));

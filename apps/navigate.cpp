@@ -72,6 +72,8 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   std::string junctions = "separate";
   app.add_option("--junctions", junctions, "how a junction's wrong branches enter omega: separate (the paper's task, every table row) or combined (k-way junctions and closely spaced forks aimed at together, layout obs/4; docs/junctions.md)");
+  std::string task_scale = "auto";
+  app.add_option("--task-scale", task_scale, "the wrong-branch and control-zone lengths in millimetres (fixed: the paper's, set for coronaries) or from the vessel's walls (vessel: a wrong branch is entered past its ostium, inside its lumen); auto = vessel for an inlet wider than 4 mm in radius (docs/vessel_scale.md)");
   app.add_option("--threads", threads, "episodes run in parallel");
   app.add_option("--out", out_dir, "write trajectories (JSON, VTK .vtp) and biplane PNGs here");
   app.add_flag("--json", json, "print one JSON summary on stdout");
@@ -92,11 +94,15 @@ int main(int argc, char** argv) {
     // The default wire is a 0.014" coronary wire made for vessels of about 0.8-2 mm radius; in an
     // aorta (radius 10-15 mm) its tip cannot span the lumen to aim at a branch.
     const double inlet_radius = nav.anatomy.graph.inlet.radius;
-    if (wire_path.empty() && inlet_radius > 4.0)
+    if (wire_path.empty() && inlet_radius > gw::TaskConfig{}.wide_vessel_radius_mm)
       std::cerr << "note: " << anatomy_path << ": the inlet is " << inlet_radius
                 << " mm in radius, far above the default 0.014\" coronary wire's range (about 0.8-2 mm); for an aorta "
                    "try --wire "
                 << gw::shipped_path("engine/wire/aortic_035_angled.json") << " (0.035\" angled-tip wire)\n";
+    if (task_scale == "auto" && inlet_radius > gw::TaskConfig{}.wide_vessel_radius_mm)
+      std::cerr << "note: " << anatomy_path << ": wide inlet, so a wrong branch counts once the tip is inside it past its "
+                   "ostium and the policy acts within 20 mm of the parent's wall (--task-scale vessel; fixed = the "
+                   "paper's millimetres; docs/vessel_scale.md)\n";
     if (!target_point_text.empty()) {
       target = std::to_string(gw::nearest_target(nav.anatomy.graph, parse_point(target_point_text, "--target-point")));
       std::cerr << "target: " << anatomy_path << ": --target-point is nearest target " << target << "\n";
@@ -109,6 +115,7 @@ int main(int argc, char** argv) {
     auto make_controller = [&] { return gw::make_controller(controller_kind, policy); };
     gw::TaskConfig config;
     config.junctions = gw::parse_junction_model(junctions);
+    config.task_scale = gw::parse_task_scale(task_scale);
     make_controller()->adapt(config);  // an actor trained on the paper's omega gets the paper's omega
     config.intermediate_target_mm = intermediate_target_mm;
     config.push_mm_per_s = push_mm_per_s;  // make_navigation_task refuses a speed that is not > 0
@@ -147,6 +154,7 @@ int main(int argc, char** argv) {
     if (!nav.intake_report.empty()) summary["intake"] = nlohmann::json::parse(nav.intake_report);
     summary["intermediate_target_mm"] = intermediate_target_mm;
     summary["push_mm_per_s"] = push_mm_per_s;
+    summary["task_scale"] = task.courses.at(0).at(0).vessel_scale ? "vessel" : "fixed";  // --task-scale, resolved
     if (recovery > 0) summary["recovery_attempts"] = recovery;
     summary["wall_time_s"] = wall;
     if (!out_dir.empty()) {

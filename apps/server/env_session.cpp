@@ -86,6 +86,7 @@ std::string spec_json(const NavigationTask& task) {
               {"omega_plane", omega_plane_name(c.omega_plane)},
               {"omega_side", c.omega_side},
               {"junctions", junction_model_name(c.junctions)},
+              {"task_scale", task_scale_name(c.task_scale)},
               {"reward", {{"omega_centre", c.reward.omega_centre}, {"omega_slope", c.reward.omega_slope}}},
               {"roll_disturbance", {{"probability", c.roll_disturbance_probability},
                                     {"min_rad", c.roll_disturbance_min_rad},

@@ -50,6 +50,13 @@ Course make_course(const CenterlineGraph& graph, const std::vector<Polyline>& br
   course.target_id = target_id;
   course.target = graph.targets.at(static_cast<size_t>(target_id - 1)).position;
   course.line = make_polyline(path.points);
+  switch (config.task_scale) {
+    case TaskScale::kFixed: course.vessel_scale = false; break;
+    case TaskScale::kVessel: course.vessel_scale = true; break;
+    case TaskScale::kAuto: course.vessel_scale = graph.inlet.radius > config.wide_vessel_radius_mm; break;
+  }
+  const RadiusProfile course_radius =
+      course.vessel_scale ? make_radius_profile(path.points, path.radii) : RadiusProfile{};
 
   for (size_t k = 0; k < path.bifurcations.size(); ++k) {
     const PathBifurcation& pb = path.bifurcations[k];
@@ -77,6 +84,15 @@ Course make_course(const CenterlineGraph& graph, const std::vector<Polyline>& br
       cb.wrong_branches.push_back(w);
       cb.wrong_in_plane.push_back(wrong_in_plane(cb, branch_lines.at(static_cast<size_t>(w)), config));
     }
+    cb.control_radius = config.control_radius_mm;
+    if (course.vessel_scale) {
+      for (int w : pb.wrong_children) {
+        const CenterlineBranch& child = graph.branches.at(static_cast<size_t>(w));
+        cb.wrong_lumens.push_back(make_branch_lumen(child.points, child.radii, course.line, course_radius));
+      }
+      cb.parent_radius = median_radius(course_radius, cb.arc - 8.0, cb.arc);
+      cb.control_radius += cb.parent_radius;
+    }
     course.bifurcations.push_back(std::move(cb));
   }
   // Closely spaced forks (JunctionModel::kCombined): a bifurcation also aims away from the wrong children
@@ -99,7 +115,7 @@ Course make_course(const CenterlineGraph& graph, const std::vector<Polyline>& br
     // Past the control zone, but before the next bifurcation's centre.
     const double next = course.bifurcations[k + 1].arc;
     const double here = course.bifurcations[k].arc;
-    course.goal_arc.push_back(std::min(here + config.control_radius_mm, 0.5 * (here + next)));
+    course.goal_arc.push_back(std::min(here + course.bifurcations[k].control_radius, 0.5 * (here + next)));
     // Never before the hand-over point (so 0 = lambda to the hand-over point), never past the target.
     course.lambda_arc.push_back(
         std::max(course.goal_arc.back(), std::min(here + config.intermediate_target_mm, course.line.length)));

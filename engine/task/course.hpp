@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "centerline/graph/centerline_graph.hpp"
+#include "engine/task/branch_lumen.hpp"
 #include "engine/task/polyline.hpp"
 #include "engine/task/task_config.hpp"
 
@@ -24,6 +25,10 @@ struct CourseBifurcation {
                                                    // for OmegaPlane::kApproach) projected on it; zero when
                                                    // parallel to the normal; with JunctionModel::kCombined also those of
                                                    // the close bifurcations that follow (after this one's own)
+  // TaskScale::kVessel only (empty / 0 otherwise):
+  std::vector<BranchLumen> wrong_lumens;           // per wrong_branches entry: its radius and ostium
+  double parent_radius = 0.0;                      // the course's median radius over the 8 mm before the centre
+  double control_radius = 0.0;                     // the policy acts within this of the centre
 };
 
 struct Course {
@@ -31,7 +36,7 @@ struct Course {
   Eigen::Vector3d target = Eigen::Vector3d::Zero();
   Polyline line;                                   // inlet -> target
   std::vector<CourseBifurcation> bifurcations;     // in the order they are met
-  // Goals, in order: goal k < last belongs to bifurcation k and lies control_radius_mm past its
+  // Goals, in order: goal k < last belongs to bifurcation k and lies its control_radius past its
   // centre in the correct branch (where the policy hands control back); the last goal is the
   // target itself (so a single-bifurcation pattern has exactly one goal, as in the paper's training).
   std::vector<double> goal_arc;
@@ -39,6 +44,7 @@ struct Course {
   // TaskConfig::intermediate_target_mm past the bifurcation (the last one is the target).
   std::vector<double> lambda_arc;
   bool policy_always = true;                       // resolved ControlMode for this course
+  bool vessel_scale = false;                       // resolved TaskScale: true = kVessel
 };
 
 // Builds the course to `target_id`. `branch_lines[b]` is make_polyline(graph.branches[b].points).

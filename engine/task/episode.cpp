@@ -10,6 +10,7 @@
 #include "engine/task/bifurcation_omega.hpp"
 #include "engine/task/reward.hpp"
 #include "engine/task/wall_force.hpp"
+#include "engine/task/wrong_branch_entered.hpp"
 
 namespace gw {
 
@@ -37,36 +38,21 @@ double lambda_ratio(const TaskConfig& c, const EpisodeState& s) {
   return std::clamp(s.lambda_mm / s.lambda0_mm, 0.0, c.max_lambda_ratio);
 }
 
-bool near_a_bifurcation(const TaskConfig& c, const Course& course, const Eigen::Vector3d& tip) {
+bool near_a_bifurcation(const Course& course, const Eigen::Vector3d& tip) {
   for (const CourseBifurcation& b : course.bifurcations)
-    if ((tip - b.centre).norm() <= c.control_radius_mm) return true;
+    if ((tip - b.centre).norm() <= b.control_radius) return true;
   return false;
-}
-
-// Tip far enough along a wrong child and closer to it than to any part of the course. (Comparing
-// with the whole course, not just the continuation past the bifurcation, matters where a wrong
-// child bends back towards the access vessel, e.g. an S-shaped pattern.)
-// Returns the index (into course.bifurcations) of the bifurcation whose wrong child the tip is in, or -1.
-int wrong_branch_entered(const TaskConfig& c, const Anatomy& anatomy, const Course& course, const Eigen::Vector3d& tip,
-                         double course_distance) {
-  for (size_t k = 0; k < course.bifurcations.size(); ++k) {
-    for (int w : course.bifurcations[k].wrong_branches) {
-      const PolylineProjection pw = project_onto_polyline(anatomy.branch_lines[static_cast<size_t>(w)], tip);
-      if (pw.arc >= c.wrong_branch_depth_mm && pw.distance < course_distance) return static_cast<int>(k);
-    }
-  }
-  return -1;
 }
 
 // Recovery: where to pull back to from the tip's progress `at` along the course. After a wrong branch
 // at bifurcation `lost` (>= 0): recovery_retract_mm before its centre. After a stall or a fold: that far
-// before the tip, and before the centre of any bifurcation the tip is within control_radius_mm of (along
+// before the tip, and before the centre of any bifurcation the tip is within its control radius of (along
 // the course), so the controller re-aims for it from the edge of its control zone.
 double retract_target(const TaskConfig& c, const Course& course, double at, int lost) {
   if (lost >= 0) return course.bifurcations[static_cast<size_t>(lost)].arc - c.recovery_retract_mm;
   double to = at - c.recovery_retract_mm;
   for (const CourseBifurcation& b : course.bifurcations)
-    if (std::abs(at - b.arc) <= c.control_radius_mm) to = std::min(to, b.arc - c.recovery_retract_mm);
+    if (std::abs(at - b.arc) <= b.control_radius) to = std::min(to, b.arc - c.recovery_retract_mm);
   return to;
 }
 
@@ -135,7 +121,7 @@ void observe(const NavigationTask& task, EpisodeState& s, bool first) {
   o[obs_index::kOmega] = omega;
   o[obs_index::kOmegaSide] = side;
 
-  s.in_control = course.policy_always || near_a_bifurcation(c, course, tip);
+  s.in_control = course.policy_always || near_a_bifurcation(course, tip);
 }
 
 // Drawn after every other reset draw, and only when enabled, so episodes without it are unchanged.
@@ -278,7 +264,7 @@ void end_retraction(const NavigationTask& task, EpisodeState& s) {
   s.lambda_mm = std::max(0.0, course.lambda_arc[static_cast<size_t>(goal)] - s.progress_mm);
   s.lambda0_mm = std::max(s.lambda_mm, 1e-3);
   s.obs[obs_index::kLambda] = s.obs[obs_index::kLambdaPrev] = lambda_ratio(c, s);
-  s.in_control = course.policy_always || near_a_bifurcation(c, course, s.tip);
+  s.in_control = course.policy_always || near_a_bifurcation(course, s.tip);
   s.best_progress_mm = s.progress_mm;
   s.best_progress_step = s.steps;
 }

@@ -29,6 +29,7 @@ void check_task_config(const TaskConfig& c) {
   require(c.success_radius_mm > 0, "success_radius_mm", "> 0");
   require(c.wrong_branch_depth_mm >= 0, "wrong_branch_depth_mm", ">= 0");
   require(c.control_radius_mm > 0, "control_radius_mm", "> 0");
+  require(c.wide_vessel_radius_mm > 0 && std::isfinite(c.wide_vessel_radius_mm), "wide_vessel_radius_mm", "> 0");
   require(c.intermediate_target_mm >= 0, "intermediate_target_mm", ">= 0");
   require(c.max_steps >= 0, "max_steps", ">= 0 (0 = automatic)");
   require(c.max_steps_path_factor >= 1, "max_steps_path_factor", ">= 1");
@@ -69,6 +70,22 @@ const char* control_mode_name(ControlMode mode) {
     case ControlMode::kAlways: return "always";
     case ControlMode::kNearBifurcation: return "near_bifurcation";
     case ControlMode::kAuto: return "auto";
+  }
+  return "auto";
+}
+
+TaskScale parse_task_scale(const std::string& text) {
+  if (text == "fixed") return TaskScale::kFixed;
+  if (text == "vessel") return TaskScale::kVessel;
+  if (text == "auto") return TaskScale::kAuto;
+  throw std::invalid_argument("task scale '" + text + "' is not one of fixed, vessel, auto");
+}
+
+const char* task_scale_name(TaskScale scale) {
+  switch (scale) {
+    case TaskScale::kFixed: return "fixed";
+    case TaskScale::kVessel: return "vessel";
+    case TaskScale::kAuto: return "auto";
   }
   return "auto";
 }

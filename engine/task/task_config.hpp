@@ -26,6 +26,20 @@ enum class JunctionModel {
               // branches lie on opposite sides (their mean cancels; results/junctions), so off by default
 };
 
+// How the task's lengths meet the vessel's size (issue 35; docs/vessel_scale.md).
+enum class TaskScale {
+  kFixed,   // the paper's millimetres, set for coronaries 1.5-4 mm across: a wrong child is entered once the tip
+            // is wrong_branch_depth_mm along its centreline from the bifurcation centre, and the policy acts
+            // within control_radius_mm of the centre. Every row of the results table
+  kVessel,  // the same lengths measured from the walls: a wrong child is entered once the tip is inside its
+            // lumen (nearer its centreline than its radius) wrong_branch_depth_mm past its ostium (where its
+            // centreline leaves the parent's lumen), and the policy acts within control_radius_mm of the
+            // parent's wall around the centre. In a 23 mm aorta the fixed rules call a tip on the wall beside
+            // an ostium "in the branch" (the child's centreline runs ~11 mm inside the aorta) and hand the
+            // policy control ~16 mm before a fork whose centre lies on the axis (results/arch_wire)
+  kAuto,    // kVessel when the inlet radius exceeds wide_vessel_radius_mm, else kFixed
+};
+
 // The plane omega is measured in (observation.hpp, omega).
 enum class OmegaPlane {
   kCorrectBranch,  // paper 2.2.3: tip curvature and wrong direction w projected on the plane normal to the
@@ -66,6 +80,10 @@ struct TaskConfig {
   double wrong_branch_depth_mm = 4.0;    // failure once the tip is this far along a wrong child and
                                          // closer to it than to the correct continuation
   double control_radius_mm = 20.0;       // paper: the policy acts within 20 mm of a bifurcation centre
+  TaskScale task_scale = TaskScale::kAuto;  // the two rules above in millimetres or from the walls
+  double wide_vessel_radius_mm = 4.0;    // kAuto: an inlet wider than this is not a coronary (the 0.014" wire's
+                                         // range, 1.5-4 mm; navigate suggests the aortic wire above it). Every
+                                         // anatomy of the index has an inlet radius of 1.75-2 mm
   double intermediate_target_mm = 50.0;  // trees: lambda (observation and reward) is measured to an
                                          // intermediate target this far past each bifurcation centre along
                                          // the course (capped at the final target); the goal still advances
@@ -140,6 +158,10 @@ const char* control_mode_name(ControlMode mode);
 // "separate" | "combined"; throws std::invalid_argument for anything else.
 JunctionModel parse_junction_model(const std::string& text);
 const char* junction_model_name(JunctionModel model);
+
+// "fixed" | "vessel" | "auto"; throws std::invalid_argument for anything else.
+TaskScale parse_task_scale(const std::string& text);
+const char* task_scale_name(TaskScale scale);
 
 // "correct_branch" | "approach"; throws std::invalid_argument for anything else.
 OmegaPlane parse_omega_plane(const std::string& text);

@@ -4,6 +4,7 @@
 //   evaluate --episode-scale 0.1       # a quick look
 //   evaluate --from-json a/results.json b/results.json --out both   # runs on two --seed sets, joined
 //   evaluate --out results/ --resume   # after an interruption: the rows results.json holds are kept
+//   evaluate --rows coronary-like --episodes 10:10 --out s2   # a shard: episodes 10-19 of the row
 // Progress with an ETA goes to stderr; results.json and results.md are rewritten after every row.
 #include <CLI/CLI.hpp>
 #include <filesystem>
@@ -108,6 +109,15 @@ int main(int argc, char** argv) {
   app.add_option("--controllers", controllers,
                  "comma-separated columns: policy, push-only, scripted-omega, scripted-omega-ccw (the scripted "
                  "rule turning the other way)");
+  std::string episodes_range;
+  app.add_option("--episodes", episodes_range,
+                 "FIRST:COUNT: run only episodes FIRST..FIRST+COUNT-1 of each row (a shard, recorded in the "
+                 "settings; shards joined with --from-json in episode order are the whole run: "
+                 "python -m guidewire_nav.cluster does this on a Ray cluster)");
+  bool plan = false;
+  app.add_flag("--plan", plan,
+               "run nothing: print the rows these flags select as JSON ({\"rows\": [{\"name\", \"episodes\"}]}, "
+               "episodes before any --episodes shard)");
   std::vector<std::string> from_json;
   app.add_option("--from-json", from_json,
                  "run nothing: write results.md (to --out) again from a results.json an earlier run wrote; given "
@@ -134,6 +144,29 @@ int main(int argc, char** argv) {
       gw::write_file_atomic(merged_path, merged.dump(2) + "\n");
       write_markdown(merged, out_dir);
       return 0;
+    }
+    if (plan) {
+      nlohmann::json rows = nlohmann::json::array();
+      for (const gw::EvaluationRow& row : gw::select_rows(gw::paper_table(), rows_filter))
+        rows.push_back({{"name", row.name}, {"episodes", gw::scaled_episodes(row, o.episode_scale)}});
+      std::cout << nlohmann::json{{"rows", rows}}.dump(2) << "\n";
+      return 0;
+    }
+    if (!episodes_range.empty()) {
+      const std::size_t colon = episodes_range.find(':');
+      try {
+        if (colon == std::string::npos) throw std::invalid_argument("no colon");
+        std::size_t used = 0;
+        o.first_episode = std::stoi(episodes_range.substr(0, colon), &used);
+        if (used != colon) throw std::invalid_argument("first");
+        const std::string count = episodes_range.substr(colon + 1);
+        o.episode_count = std::stoi(count, &used);
+        if (used != count.size()) throw std::invalid_argument("count");
+      } catch (const std::exception&) {
+        throw std::invalid_argument("--episodes must be FIRST:COUNT (two whole numbers), got '" + episodes_range + "'");
+      }
+      if (o.first_episode < 0 || o.episode_count < 1)
+        throw std::invalid_argument("--episodes FIRST:COUNT needs FIRST >= 0 and COUNT >= 1, got '" + episodes_range + "'");
     }
     if (centerlines != "extract" && centerlines != "truth")
       throw std::invalid_argument("--centerlines must be 'extract' or 'truth', got '" + centerlines + "'");

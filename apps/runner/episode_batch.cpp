@@ -129,52 +129,29 @@ nlohmann::json force_summary(const std::vector<nlohmann::json>& forces) {
 
 }  // namespace
 
-nlohmann::json summarize_episodes(const std::vector<EpisodeTrace>& traces) {
+nlohmann::json summarize_results(const nlohmann::json& results) {
   nlohmann::json outcomes = nlohmann::json::object(), recovered_outcomes = nlohmann::json::object();
   for (const std::string& o : kTraceOutcomes) outcomes[o] = recovered_outcomes[o] = 0;
-  nlohmann::json results = nlohmann::json::array();
   std::vector<nlohmann::json> forces, recovered_forces;
   int successes = 0, recovered = 0, with_recovery = 0, attempts_allowed = 0, attempts = 0;
   double procedure_time = 0;
-  for (const EpisodeTrace& t : traces) {
-    successes += t.outcome == "success";
-    outcomes[t.outcome] = outcomes.value(t.outcome, 0) + 1;
-    const int end = strict_end(t);
-    results.push_back({{"anatomy", t.anatomy},
-                       {"controller", t.controller},
-                       {"target", t.target_id},
-                       {"seed", t.seed},
-                       {"outcome", t.outcome},
-                       {"detail", t.detail},
-                       {"steps", end},
-                       {"sim_time_s", t.time_s.empty() ? 0.0 : t.time_s[static_cast<std::size_t>(end)]}});
-    if (!std::isnan(t.omega_at_loss)) results.back()["omega_at_loss"] = t.omega_at_loss;
-    if (t.outcome == "wrong_branch") results.back()["folded"] = tip_folded_before_loss(t);
-    const nlohmann::json force = episode_force(t, 0, end);
-    if (!force.empty()) results.back()["force"] = force;
-    forces.push_back(force);
-    if (t.recovery_attempts_allowed > 0) {
-      // The whole procedure: the strict episode and what recovery did after it.
-      const int last = static_cast<int>(t.time_s.size()) - 1;
-      const nlohmann::json whole = episode_force(t, 0, last);
-      nlohmann::json r = {{"attempts_allowed", t.recovery_attempts_allowed},
-                          {"attempts", t.recovery_attempts_used},
-                          {"outcome", t.recovery_outcome},
-                          {"detail", t.recovery_detail},
-                          {"steps", last},
-                          {"procedure_time_s", t.time_s.empty() ? 0.0 : t.time_s.back()}};
-      if (!whole.empty()) r["force"] = whole;
-      results.back()["recovery"] = r;
+  for (const nlohmann::json& ep : results) {
+    const std::string outcome = ep.at("outcome").get<std::string>();
+    successes += outcome == "success";
+    outcomes[outcome] = outcomes.value(outcome, 0) + 1;
+    forces.push_back(ep.value("force", nlohmann::json::object()));
+    if (ep.contains("recovery")) {
+      const nlohmann::json& r = ep["recovery"];
       ++with_recovery;
-      attempts_allowed = std::max(attempts_allowed, t.recovery_attempts_allowed);
-      recovered += t.recovery_outcome == "success";
-      recovered_outcomes[t.recovery_outcome] = recovered_outcomes.value(t.recovery_outcome, 0) + 1;
-      attempts += t.recovery_attempts_used;
-      procedure_time += r["procedure_time_s"].get<double>();
-      recovered_forces.push_back(whole);
+      attempts_allowed = std::max(attempts_allowed, r.at("attempts_allowed").get<int>());
+      recovered += r.at("outcome") == "success";
+      recovered_outcomes[r.at("outcome").get<std::string>()] = recovered_outcomes.value(r.at("outcome").get<std::string>(), 0) + 1;
+      attempts += r.at("attempts").get<int>();
+      procedure_time += r.at("procedure_time_s").get<double>();
+      recovered_forces.push_back(r.value("force", nlohmann::json::object()));
     }
   }
-  const int n = static_cast<int>(traces.size());
+  const int n = static_cast<int>(results.size());
   nlohmann::json out = {{"episodes", n},
                         {"successes", successes},
                         {"success_rate", n ? static_cast<double>(successes) / n : 0.0},
@@ -194,6 +171,39 @@ nlohmann::json summarize_episodes(const std::vector<EpisodeTrace>& traces) {
     if (!rf.empty()) out["recovery"]["force"] = rf;
   }
   return out;
+}
+
+nlohmann::json summarize_episodes(const std::vector<EpisodeTrace>& traces) {
+  nlohmann::json results = nlohmann::json::array();
+  for (const EpisodeTrace& t : traces) {
+    const int end = strict_end(t);
+    results.push_back({{"anatomy", t.anatomy},
+                       {"controller", t.controller},
+                       {"target", t.target_id},
+                       {"seed", t.seed},
+                       {"outcome", t.outcome},
+                       {"detail", t.detail},
+                       {"steps", end},
+                       {"sim_time_s", t.time_s.empty() ? 0.0 : t.time_s[static_cast<std::size_t>(end)]}});
+    if (!std::isnan(t.omega_at_loss)) results.back()["omega_at_loss"] = t.omega_at_loss;
+    if (t.outcome == "wrong_branch") results.back()["folded"] = tip_folded_before_loss(t);
+    const nlohmann::json force = episode_force(t, 0, end);
+    if (!force.empty()) results.back()["force"] = force;
+    if (t.recovery_attempts_allowed > 0) {
+      // The whole procedure: the strict episode and what recovery did after it.
+      const int last = static_cast<int>(t.time_s.size()) - 1;
+      const nlohmann::json whole = episode_force(t, 0, last);
+      nlohmann::json r = {{"attempts_allowed", t.recovery_attempts_allowed},
+                          {"attempts", t.recovery_attempts_used},
+                          {"outcome", t.recovery_outcome},
+                          {"detail", t.recovery_detail},
+                          {"steps", last},
+                          {"procedure_time_s", t.time_s.empty() ? 0.0 : t.time_s.back()}};
+      if (!whole.empty()) r["force"] = whole;
+      results.back()["recovery"] = r;
+    }
+  }
+  return summarize_results(results);
 }
 
 }  // namespace gw

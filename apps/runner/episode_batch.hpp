@@ -56,4 +56,9 @@ bool tip_folded_before_loss(const EpisodeTrace& trace);
 // ends it), recovery's figures the whole procedure's.
 nlohmann::json summarize_episodes(const std::vector<EpisodeTrace>& traces);
 
+// The same summary from the per-episode "results" entries alone (summarize_episodes builds them, then
+// calls this): how shards of one row run apart (evaluate --episodes) and joined (--from-json) get the
+// counts, force and recovery figures a single run computes, to the bit when the entries are in its order.
+nlohmann::json summarize_results(const nlohmann::json& results);
+
 }  // namespace gw

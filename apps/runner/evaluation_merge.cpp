@@ -1,11 +1,13 @@
 #include "apps/runner/evaluation_merge.hpp"
 
+#include <algorithm>
 #include <functional>
 #include <map>
 #include <optional>
 #include <set>
 #include <stdexcept>
 
+#include "apps/runner/episode_batch.hpp"
 #include "apps/runner/evaluation_table.hpp"
 
 namespace gw {
@@ -17,20 +19,13 @@ const nlohmann::json* find_row(const nlohmann::json& run, const std::string& nam
   return nullptr;
 }
 
-// One column's summaries (summarize_episodes) of the same row in several runs, as one.
+// One column's summaries (summarize_episodes) of the same row in several runs, as one: the episodes
+// concatenated in run order and summarized again (counts, outcomes, force and recovery figures).
 nlohmann::json merge_summaries(const std::vector<const nlohmann::json*>& parts) {
-  nlohmann::json out = {{"episodes", 0}, {"successes", 0}, {"outcomes", nlohmann::json::object()},
-                        {"results", nlohmann::json::array()}};
-  for (const nlohmann::json* s : parts) {
-    out["episodes"] = out["episodes"].get<int>() + s->at("episodes").get<int>();
-    out["successes"] = out["successes"].get<int>() + s->at("successes").get<int>();
-    for (const auto& [outcome, n] : s->at("outcomes").items())
-      out["outcomes"][outcome] = out["outcomes"].value(outcome, 0) + n.get<int>();
-    for (const nlohmann::json& ep : s->at("results")) out["results"].push_back(ep);
-  }
-  const int n = out["episodes"].get<int>();
-  out["success_rate"] = n ? out["successes"].get<double>() / n : 0.0;
-  return out;
+  nlohmann::json results = nlohmann::json::array();
+  for (const nlohmann::json* s : parts)
+    for (const nlohmann::json& ep : s->at("results")) results.push_back(ep);
+  return summarize_results(results);
 }
 
 // The ceilings of a row's runs added up; absent when a run did not measure it.
@@ -46,6 +41,10 @@ std::optional<nlohmann::json> merge_ceilings(const std::vector<const nlohmann::j
     for (const char* list : {"reached_only_by_a_schedule", "reached_by_none"})
       for (const nlohmann::json& ep : c.at(list)) out[list].push_back(ep);
   }
+  // In episode_key order, as one run lists them (row_ceiling), whatever the order of the runs.
+  for (const char* list : {"reached_only_by_a_schedule", "reached_by_none"})
+    std::stable_sort(out[list].begin(), out[list].end(),
+                     [](const nlohmann::json& a, const nlohmann::json& b) { return episode_key(a) < episode_key(b); });
   return out;
 }
 
@@ -163,6 +162,15 @@ nlohmann::json merge_evaluations(const std::vector<nlohmann::json>& runs, const 
     }
     out_rows.push_back(merge_row(parts, row, name_of));
   }
+  // Shards of one run (evaluate --episodes, settings alike but for the range): joined, they are that run.
+  bool shards = true;
+  nlohmann::json whole = runs[0].value("settings", nlohmann::json::object());
+  whole.erase("episodes");
+  for (const nlohmann::json& r : runs) {
+    nlohmann::json s = r.value("settings", nlohmann::json::object());
+    shards = shards && s.contains("episodes") && s.erase("episodes") && s == whole;
+  }
+  if (shards) return {{"rows", out_rows}, {"settings", whole}};
   nlohmann::json settings = nlohmann::json::array();
   for (std::size_t i = 0; i < runs.size(); ++i)
     settings.push_back({{"run", name_of(i)}, {"settings", runs[i].value("settings", nlohmann::json::object())}});

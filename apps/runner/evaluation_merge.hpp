@@ -15,6 +15,10 @@ namespace gw {
 // column missing from one of them, different paper figures, different settings (insertion speed,
 // intermediate target, centerlines, wire file: different experiments; run_task_settings), or an episode
 // (anatomy, target, seed) in two runs (the same --seed twice would count every episode twice).
+// Columns are summarized again from their episodes (summarize_results) and ceiling lists kept in
+// episode_key order. Runs that are shards of one run (evaluate --episodes: settings equal but for their
+// "episodes" range) join into that run: its settings, no "merged_from"; given in episode order, the join
+// is the run's results.json but for wall_time_s (the shards' sum).
 nlohmann::json merge_evaluations(const std::vector<nlohmann::json>& runs, const std::vector<std::string>& names);
 
 }  // namespace gw

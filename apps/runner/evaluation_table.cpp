@@ -43,6 +43,10 @@ std::vector<EvaluationRow> paper_table() {
   };
 }
 
+int scaled_episodes(const EvaluationRow& row, double episode_scale) {
+  return std::max(1, static_cast<int>(std::lround(row.episodes * episode_scale)));
+}
+
 std::string target_key(const std::string& anatomy, int target) { return anatomy + " T" + std::to_string(target); }
 
 std::string episode_key(const nlohmann::json& ep) {
@@ -176,6 +180,7 @@ nlohmann::json evaluation_settings(const EvaluationOptions& o) {
   // Only when on, so the results.json files written before recovery existed resume as before.
   if (o.recovery_attempts > 0) settings["recovery_attempts"] = o.recovery_attempts;
   if (o.junctions != JunctionModel::kSeparate) settings["junctions"] = junction_model_name(o.junctions);
+  if (o.episode_count >= 0) settings["episodes"] = {o.first_episode, o.episode_count};  // a shard (issue 40)
   return settings;
 }
 
@@ -203,8 +208,16 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
   const nlohmann::json settings = evaluation_settings(o);
   std::map<std::string, nlohmann::json> finished;  // by name: kept from an earlier run, then the rows run here
   for (const nlohmann::json& row : o.finished_rows) finished[row["name"].get<std::string>()] = row;
+  // The row's episodes this run takes: all, or the --episodes shard of them.
+  auto shard_range = [&](const EvaluationRow& row) {
+    const int all = scaled_episodes(row, o.episode_scale);
+    if (o.episode_count < 0) return std::pair<int, int>{0, all};
+    const int first = std::min(all, std::max(0, o.first_episode));
+    return std::pair<int, int>{first, std::min(all, first + o.episode_count)};
+  };
   auto row_episodes = [&](const EvaluationRow& row) {
-    return std::max(1, static_cast<int>(std::lround(row.episodes * o.episode_scale)));
+    const auto [first, end] = shard_range(row);
+    return end - first;
   };
   auto row_policy = [&](const EvaluationRow& row) { return row.base_policy ? o.base_policy : o.policy; };
   auto row_columns = [&](const EvaluationRow& row) {
@@ -246,7 +259,9 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
       base_config.push_mm_per_s = o.push_mm_per_s;
       base_config.junctions = o.junctions;
       const NavigationTask default_task = make_navigation_task(base_config, wire, anatomies);
-      const std::vector<EpisodeRequest> requests = row_requests(default_task, episodes, o.seed);
+      const auto [first, end] = shard_range(row);
+      const std::vector<EpisodeRequest> all_requests = row_requests(default_task, end, o.seed);
+      const std::vector<EpisodeRequest> requests(all_requests.begin() + first, all_requests.end());
       TraceOptions trace;
       trace.wire_shape_every = 0;
       for (const std::string& kind : o.controllers) {

@@ -54,7 +54,15 @@ struct EvaluationOptions {
   std::string wire_path;                                                // wire parameter JSON ("" = the 0.014" wire)
   int recovery_attempts = 0;  // --recovery K (task_config.hpp): the columns also report the procedure with recovery
   JunctionModel junctions = JunctionModel::kSeparate;  // --junctions (task_config.hpp; issue 41)
+  // evaluate --episodes FIRST:COUNT (issue 40): run only episodes FIRST .. FIRST+COUNT-1 of each row (a
+  // shard; the rest of the row's episodes are drawn as ever, so a shard's episodes are the whole run's).
+  // Recorded in the settings as "episodes": [FIRST, COUNT]; count < 0: every episode (not recorded).
+  int first_episode = 0;
+  int episode_count = -1;
 };
+
+// How many episodes a run with `episode_scale` gives `row` (all of them, before any --episodes shard).
+int scaled_episodes(const EvaluationRow& row, double episode_scale);
 
 // A row's anatomies as the table runs them: centerlines extracted (or the truth when
 // !extract_centerlines), the insertion point from each anatomy's truth, named as in the index.

@@ -2,6 +2,7 @@
 // that do not fit together are refused by name.
 #include <catch2/catch.hpp>
 
+#include "apps/runner/episode_batch.hpp"
 #include "apps/runner/evaluation_merge.hpp"
 #include "apps/runner/evaluation_table.hpp"
 
@@ -194,4 +195,39 @@ TEST_CASE("merge: a target one run never reached is unreached only if no run's c
   nlohmann::json no_ceiling = run(5, {true}, {true}, 1);
   no_ceiling["rows"][0].erase("ceiling");
   CHECK_FALSE(gw::merge_evaluations({a, no_ceiling}, {"a", "b"})["rows"][0].contains("ceiling"));
+}
+
+TEST_CASE("merge: shards of one run (evaluate --episodes) join into that run", "[runner][merge]") {
+  // One run's 3 episodes (seeds 5, 6, 7), as one run and as shards 0:2 and 2:1, each episode with its force.
+  auto with_force = [](nlohmann::json run, double first_peak) {
+    for (auto& [column, summary] : run["rows"][0]["results"].items()) {
+      double peak = first_peak;
+      for (nlohmann::json& ep : summary["results"]) {
+        ep["force"] = {{"peak_node_N", peak}, {"peak_total_N", 2 * peak}, {"peak_tip_N", 0.1}, {"mean_total_N", 0.3}};
+        peak += 1.0;
+      }
+      summary = gw::summarize_results(summary["results"]);
+    }
+    return run;
+  };
+  nlohmann::json whole = with_force(run(5, {true, false, false}, {true, true, false}, 3), 0.5);
+  nlohmann::json first = with_force(run(5, {true, false}, {true, true}, 2), 0.5);
+  nlohmann::json last = with_force(run(7, {false}, {false}, 1), 2.5);
+  // Both shards' ceilings list an episode only a schedule reached, the later shard's first in key order.
+  auto reached = [](int target, int seed) { return nlohmann::json{{"anatomy", "coronary"}, {"target", target}, {"seed", seed}}; };
+  whole["rows"][0]["ceiling"]["reached_only_by_a_schedule"] = {reached(1, 7), reached(2, 6)};
+  first["rows"][0]["ceiling"]["reached_only_by_a_schedule"] = {reached(2, 6)};
+  last["rows"][0]["ceiling"]["reached_only_by_a_schedule"] = {reached(1, 7)};
+  whole["settings"] = {{"seed", 5}};
+  first["settings"] = {{"seed", 5}, {"episodes", {0, 2}}};
+  last["settings"] = {{"seed", 5}, {"episodes", {2, 1}}};
+  nlohmann::json joined = gw::merge_evaluations({first, last}, {"s0.json", "s2.json"});
+  CHECK(joined["settings"] == whole["settings"]);  // the run's own settings, no "merged_from"
+  CHECK(joined["rows"][0]["results"] == whole["rows"][0]["results"]);  // force figures too
+  CHECK(joined["rows"][0]["results"]["sac-policy"]["force"]["mean_peak_node_N"] == Approx(1.5));
+  CHECK(joined["rows"][0]["ceiling"] == whole["rows"][0]["ceiling"]);
+  CHECK(gw::evaluation_to_markdown(joined) == gw::evaluation_to_markdown(whole));
+  // Runs on different seeds stay a join of runs.
+  last["settings"] = {{"seed", 7}, {"episodes", {0, 1}}};
+  CHECK(gw::merge_evaluations({first, last}, {"s0.json", "s2.json"})["settings"].contains("merged_from"));
 }

@@ -113,6 +113,31 @@ TREES = {
          ("OM1", 2, 1, -35, 45, 0.0, 1.2),
          ("D2", 1, 8, 30, 35, 0.0, 1.0),
          ("S1", 1, 9, -30, 35, 0.0, 1.0)]),
+    # Corrected pair (2026-12-02), beside the frozen trees above: the rows of those two showed side branches
+    # leaving on the inner side of a turn, which no controller or rotation schedule reached (results/junctions).
+    # The same correction as anatomies/README.md "Reachable by design": each such branch turned 180 degrees
+    # about its parent's direction at the take-off (angle and shape unchanged); where a k-way junction has
+    # exits on both sides, the parent is made straight before it so neither side is the inner one.
+    "coronary_trifurcation_outer": (
+        "Junction test, corrected: coronary_trifurcation with the LAD straight before its trifurcation (the frozen "
+        "tree's LAD bends +0.004/mm towards D1, putting D1 on the inner side) and OM1 turned to the outer side of "
+        "the LCx's turn (+35 deg). Written by make_specs.py (issue 41).",
+        [("LAD", 0, 3, 35, 90, 0.0, 1.8),
+         ("ramus", 0, 3, 0, 55, 0.0, 1.4),
+         ("LCx", 0, 3, -40, 80, -0.006, 1.6),
+         ("D1", 1, 7, 30, 40, 0.0, 1.1),
+         ("D1b", 1, 7, -30, 35, 0.0, 1.0),
+         ("OM1", 3, 7, 35, 40, 0.0, 1.1)]),
+    "close_forks_outer": (
+        "Junction test, corrected: close_forks with D1 (-35 deg) and OM1 (+35 deg) turned to the outer side of the "
+        "left main fork's turn into their parents (the frozen tree's D1 and OM1 leave on its inner side). "
+        "Written by make_specs.py (issue 41).",
+        [("LAD", 0, 3, 30, 90, 0.004, 1.8),
+         ("LCx", 0, 3, -40, 80, -0.006, 1.6),
+         ("D1", 1, 1, -35, 45, 0.0, 1.2),
+         ("OM1", 2, 1, 35, 45, 0.0, 1.2),
+         ("D2", 1, 8, 30, 35, 0.0, 1.0),
+         ("S1", 1, 9, -30, 35, 0.0, 1.0)]),
 }
 
 for name, (description, children) in TREES.items():

@@ -26,7 +26,8 @@ TEST_CASE("the index lists the fixed anatomy layout and every file exists", "[an
       "sensitivity/var3",          "test/training_patterns_tree",   "test/unseen_4_bifurcations",
       "test/coronary",             "test/coronary_deformed",        "validation/rca_validation",
       "validation/rca_validation_deformed", "validation/pl_validation", "validation/syn_validation",
-      "junctions/coronary_trifurcation", "junctions/close_forks"};
+      "junctions/coronary_trifurcation", "junctions/close_forks",
+      "junctions/coronary_trifurcation_outer", "junctions/close_forks_outer"};
   CHECK(names == expected);
 }
 

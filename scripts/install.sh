@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs everything the project needs on a fresh Debian (bookworm) machine, then builds.
 # Idempotent: a second run skips what is already there and only rebuilds what changed.
-#   apt packages -> .venv (torch, stable-baselines3, gymnasium, pytest, training/) -> build/
+#   apt packages -> .venv (torch, stable-baselines3, gymnasium, pytest, ray, training/) -> build/
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -28,7 +28,7 @@ if [ ! -f "$stamp" ]; then
   echo "[install] python virtual environment (.venv)"
   [ -x .venv/bin/python ] || "$PYTHON" -m venv .venv
   .venv/bin/pip install -q --upgrade pip
-  .venv/bin/pip install -q -e "training[dev]"
+  .venv/bin/pip install -q -e "training[dev,cluster]"
   rm -f .venv/.installed-* && touch "$stamp"
 fi
 

@@ -91,6 +91,11 @@ class Settings:
     max_minutes: float = arg(0.0, "stop learning after this wall time (0 = run all --total-steps)")
     progress: bool = arg(True, "show a progress bar")
     servers: str = arg("", "connect to running servers 'host:port,host:port' instead of spawning them")
+    ray: bool = arg(False, "simulation servers as Ray actors with these task settings, spread over the Ray "
+                           "cluster and restarted when they die (the run goes on); needs the [cluster] extra, "
+                           "docs/cluster.md")
+    address: str = arg("", "with --ray: the Ray cluster to join ('auto' or HOST:PORT; '' = a local Ray on this "
+                           "machine)")
 
 
 class _HelpFormatter(argparse.RawDescriptionHelpFormatter, argparse.ArgumentDefaultsHelpFormatter):
@@ -133,13 +138,18 @@ def server_args(s: Settings) -> list[str]:
             "--junctions", s.junctions] + (["--omega-side"] if s.omega_side else [])
 
 
-def make_env_fn(s: Settings, rank: int, eval_env: bool = False):
-    """A thunk for (Subproc|Dummy)VecEnv: each worker starts (or connects to) its own server."""
+def make_env_fn(s: Settings, rank: int, eval_env: bool = False, ray_server=None):
+    """A thunk for (Subproc|Dummy)VecEnv: each worker starts (or connects to) its own server; with --ray
+    the server of its actor (ray_servers.ServerRef), reached again after the server restarts."""
 
     def thunk():
         from guidewire_nav.env import GuidewireEnv
 
-        if s.servers:  # remote servers, round-robin over the workers; they were started with their own set
+        if ray_server is not None:
+            from guidewire_nav.ray_servers import ServerEnv
+
+            env = ServerEnv(ray_server)
+        elif s.servers:  # remote servers, round-robin over the workers; they were started with their own set
             host, port = s.servers.split(",")[rank % len(s.servers.split(","))].rsplit(":", 1)
             env = GuidewireEnv(host=host, port=int(port))
         else:
@@ -349,11 +359,19 @@ def main(argv=None) -> int:
     np.random.seed(s.seed)
     torch.manual_seed(s.seed)
 
-    # --- environments: one server per worker, episodes on a random training anatomy and target
-    fns = [make_env_fn(s, rank) for rank in range(s.envs)]
+    # --- environments: one server per worker, episodes on a random training anatomy and target; with
+    # --ray the servers are Ray actors (ray_servers.py), the evaluation's reserving no CPU (idle while
+    # the workers run)
+    ray_servers, ray_actors = {}, {}
+    if s.ray:
+        from guidewire_nav.ray_servers import start_servers
+
+        names = [f"server-{rank}" for rank in range(s.envs)] + ["server-eval"]
+        ray_servers, ray_actors = start_servers(names, s.anatomies, server_args(s), s.address, {"server-eval": 0})
+    fns = [make_env_fn(s, rank, ray_server=ray_servers.get(f"server-{rank}")) for rank in range(s.envs)]
     vec_env = SubprocVecEnv(fns) if s.envs > 1 else DummyVecEnv(fns)
     vec_env = VecMonitor(vec_env, str(out / "monitor"), info_keywords=("success",))
-    eval_env = make_env_fn(s, 0, eval_env=True)()
+    eval_env = make_env_fn(s, 0, eval_env=True, ray_server=ray_servers.get("server-eval"))()
 
     # --- SAC with the paper's settings; the actor may get its own learning rate (SACWithActorRate)
     sac_settings = dict(
@@ -411,6 +429,11 @@ def main(argv=None) -> int:
 
     vec_env.close()
     eval_env.close()
+    if ray_actors:
+        import ray
+
+        ray_actors.clear()
+        ray.shutdown()
     print(json.dumps({k: summary[k] for k in ("steps", "wall_time_s", "best_success_rate")}))
     return 0
 

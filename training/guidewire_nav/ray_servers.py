@@ -1,0 +1,168 @@
+"""Simulation servers as Ray actors (issue 40; `gw-train --ray [--address]`, docs/cluster.md).
+
+Each server is a Ray actor that runs `guidewire-server` with train.py's task settings on whatever node Ray
+places it (spread over the cluster) and tells where it listens. Ray restarts an actor whose process or
+node dies (max_restarts=-1), and the actor starts its server again when the server alone died. The
+environment the learner steps (ServerEnv, a GuidewireEnv client) notices a broken connection, asks its
+actor for the server's new address and goes on: the episode the death cut short ends as truncated
+(info["server_restarted"]), the next reset draws from the same seeded stream. The SAC updates stay on
+the learner; only the simulation is spread.
+
+    refs = start_servers(["0", "1", "eval"], "train", server_args(s), address="")   # in train.main
+    env = ServerEnv(refs["0"])                                                       # in a worker thunk
+"""
+
+from __future__ import annotations
+
+import ctypes
+import json
+import os
+import select
+import signal
+import subprocess
+import sys
+import time
+from dataclasses import dataclass
+
+import gymnasium as gym
+
+from guidewire_nav.env import GuidewireEnv, find_server_binary
+
+
+@dataclass(frozen=True)
+class ServerRef:
+    """What an environment (in any process) needs to reach a server actor: its first address, and the
+    actor's name with the Ray cluster to ask for the next one after a restart."""
+
+    name: str          # the actor's name (Ray namespace `namespace`)
+    namespace: str
+    ray_address: str   # the GCS address of the cluster the actor lives on
+    host: str
+    port: int
+
+
+def _die_with_parent() -> None:  # pragma: no cover - runs in the child before exec
+    ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+
+
+class SimulationServer:
+    """A guidewire-server on this node (the Ray actor; start_servers makes it remote)."""
+
+    def __init__(self, name: str, binary: str, anatomies: str, server_args: list[str], listen: str):
+        import ray
+
+        self.name = name
+        self.command = [binary, "--port", "0", "--host", listen, "--anatomies", anatomies, *server_args]
+        self.host = "127.0.0.1" if listen == "127.0.0.1" else ray.util.get_node_ip_address()
+        self.starts = 0
+        self._start()
+
+    def _start(self) -> None:
+        env = dict(os.environ, GW_SERVER_NAME=self.name)  # names the process for tests and `ps e`
+        self.proc = subprocess.Popen(self.command, stdout=subprocess.PIPE, stdin=subprocess.DEVNULL, env=env,
+                                     preexec_fn=_die_with_parent)
+        ready, _, _ = select.select([self.proc.stdout], [], [], 300)
+        line = self.proc.stdout.readline() if ready else b""
+        if not line:
+            self.proc.kill()
+            raise RuntimeError(f"guidewire-server did not start: {' '.join(self.command)}")
+        self.port = int(json.loads(line)["port"])
+        self.proc.stdout.close()
+        self.starts += 1
+
+    def address(self) -> tuple[str, int, int]:
+        """(host, port, starts so far), the server started again first if it died."""
+        if self.proc.poll() is not None:
+            self._start()
+        return self.host, self.port, self.starts
+
+
+def start_servers(names: list[str], anatomies: str, server_args: list[str], address: str = "",
+                  cpus: dict[str, float] | None = None):
+    """One server actor per name (Ray started here, or joined at `address`); returns ({name: ServerRef},
+    the actor handles: keep them until the run ends, an actor goes with its last handle)."""
+    import ray
+
+    namespace = f"gw-train-{os.getpid()}"
+    if not ray.is_initialized():
+        if address:
+            ray.init(address=address, namespace=namespace, log_to_driver=False)
+        else:
+            ray.init(namespace=namespace, include_dashboard=False, log_to_driver=False,
+                     object_store_memory=200 * 1024 * 1024)
+    actor = ray.remote(max_restarts=-1, max_task_retries=-1)(SimulationServer)
+    listen = "0.0.0.0" if address else "127.0.0.1"  # a local Ray's servers stay on this machine's loopback
+    handles = {}
+    for name in names:
+        handles[name] = actor.options(name=name, num_cpus=(cpus or {}).get(name, 1),
+                                      scheduling_strategy="SPREAD").remote(
+            name, str(find_server_binary().resolve()), anatomies, server_args, listen)
+    gcs = ray.get_runtime_context().gcs_address
+    refs = {}
+    for name, handle in handles.items():
+        host, port, _ = ray.get(handle.address.remote())
+        refs[name] = ServerRef(name, namespace, gcs, host, port)
+    return refs, handles
+
+
+class ServerEnv(gym.Env):
+    """GuidewireEnv on a server actor's server that survives the server's death (see the module doc)."""
+
+    metadata = {"render_modes": []}
+
+    def __init__(self, ref: ServerRef, timeout: float = 120.0):
+        super().__init__()
+        self.ref, self.timeout, self.restarts = ref, timeout, 0
+        self.env = GuidewireEnv(host=ref.host, port=ref.port, timeout=timeout)
+        self.observation_space, self.action_space = self.env.observation_space, self.env.action_space
+        self.spec_reply = self.env.spec_reply
+        self._last_obs = None
+
+    def _reconnect(self) -> None:
+        """A new client on the server the actor (restarted by Ray if it died) now runs."""
+        import ray
+
+        if not ray.is_initialized():  # a SubprocVecEnv worker: join the learner's cluster to ask
+            ray.init(address=self.ref.ray_address, namespace=self.ref.namespace, log_to_driver=False)
+        rng = self.env.np_random  # the episode seeds go on from the same stream
+        try:
+            self.env.close()
+        except Exception:  # noqa: BLE001 - the connection is already broken
+            pass
+        deadline = time.monotonic() + 600
+        while True:
+            try:
+                host, port, starts = ray.get(ray.get_actor(self.ref.name).address.remote(), timeout=300)
+                self.env = GuidewireEnv(host=host, port=port, timeout=self.timeout)
+                break
+            except (OSError, ConnectionError, ray.exceptions.RayError):
+                if time.monotonic() > deadline:
+                    raise
+                time.sleep(2)
+        self.env.np_random = rng
+        self.restarts += 1
+        print(f"[ray] server {self.ref.name}: connection lost, on {host}:{port} again (start {starts})",
+              file=sys.stderr)
+
+    def reset(self, *, seed=None, options=None):
+        try:
+            obs, info = self.env.reset(seed=seed, options=options)
+        except (ConnectionError, OSError):
+            self._reconnect()
+            obs, info = self.env.reset(seed=seed, options=options)
+        self._last_obs = obs
+        return obs, info
+
+    def step(self, action):
+        try:
+            obs, reward, terminated, truncated, info = self.env.step(action)
+        except (ConnectionError, OSError):
+            self._reconnect()  # the episode is lost with its server: ended as truncated, reset next
+            return self._last_obs, 0.0, False, True, {"success": False, "is_success": False,
+                                                      "server_restarted": True}
+        self._last_obs = obs
+        return obs, reward, terminated, truncated, info
+
+    def close(self):
+        self.env.close()
+        super().close()

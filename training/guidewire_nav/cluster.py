@@ -278,6 +278,7 @@ def bench(args):
     threads = args.threads
     if args.out is None:
         args.out = Path(tempfile.mkdtemp(prefix="gw-bench-"))
+    load_before = os.getloadavg()[0]  # other work on the machine skews both figures
     one_out = args.out / "one-machine"
     command = [str(args.evaluate), *args.passthrough, "--threads", str(threads), "--out", str(one_out)]
     if args.rows:
@@ -295,6 +296,7 @@ def bench(args):
     same = strip_wall_times(json.loads((ray_args.out / "results.json").read_text())) == strip_wall_times(one)
     report = {
         "host_cpus": os.cpu_count(),
+        "load_average_1min": {"before": round(load_before, 2), "after": round(os.getloadavg()[0], 2)},
         "flags": args.passthrough + (["--rows", args.rows] if args.rows else []),
         "episodes": one_episodes,
         "one_machine": {"command": f"evaluate --threads {threads}", "wall_s": round(one_wall, 2),

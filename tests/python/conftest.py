@@ -43,3 +43,22 @@ def navigate_episode(tmp_path):
         return frames["observation"], frames["action"]
 
     return run
+
+
+@pytest.fixture
+def navigate_frames(tmp_path):
+    """run(controller, anatomy, target, seed) -> the frames of one C++ `navigate` episode (its trajectory JSON):
+    observation, action, agent_in_control, ... Frame 0 is the reset; frame j >= 1 holds the action taken on
+    frame j-1's observation and whether the task applied it (agent_in_control)."""
+    navigate = guidewire_nav.app_path("navigate")
+    if not navigate.is_file():
+        pytest.skip(f"navigate not built ({navigate}); set GW_BUILD_DIR")
+
+    def run(controller: str, anatomy: str, target: int, seed: int):
+        out = tmp_path / f"{controller}_{target}_{seed}"
+        subprocess.run([str(navigate), "--anatomy", str(REPO / anatomy), "--target", str(target), "--episodes", "1",
+                        "--seed", str(seed), "--controller", controller, "--out", str(out)],
+                       check=True, capture_output=True)
+        return json.loads((out / f"episode0_target{target}.json").read_text())["frames"]
+
+    return run

@@ -2,6 +2,7 @@
 
 import json
 
+import numpy as np
 import pytest
 
 from guidewire_nav import feasibility
@@ -44,3 +45,45 @@ def test_each_schedule_acts_as_its_cpp_namesake(navigate_episode, name):
     assert python == pytest.approx(actions[1:], abs=1e-9)
     if name.startswith("aim"):  # both branches of the rule were exercised: turning and holding
         assert 0.0 in python and any(a != 0.0 for a in python)
+
+
+@pytest.mark.parametrize("name", sorted(feasibility.SCHEDULES))
+def test_each_schedule_counts_like_its_cpp_namesake_on_a_tree(navigate_frames, name):
+    """On a tree the task asks for an action only near a bifurcation. The C++ schedules count the actions asked
+    for; the Python ones must count the same (k = actions applied so far), or spin/wiggle drift apart after the
+    first stretch out of control."""
+    frames = navigate_frames(name, "anatomies/test/unseen_4_bifurcations/unseen_4_bifurcations.stl", 4, 0)
+    obs, actions, control = frames["observation"], frames["action"], frames["agent_in_control"]
+    applied = [j for j in range(1, len(actions)) if control[j]]
+    assert 20 < len(applied) < len(actions) - 20  # control was handed over and back: out-of-control stretches
+    python = [feasibility.SCHEDULES[name](obs[j - 1], k) for k, j in enumerate(applied)]
+    assert python == pytest.approx([actions[j] for j in applied], abs=1e-9)
+
+
+class _HandOverEnv:
+    """An env whose task applies every other action (in_control alternates), recording what it was sent."""
+
+    def __init__(self, steps: int):
+        self.steps, self.sent, self.t = steps, [], 0
+
+    def reset(self, seed=None, options=None):
+        self.t = 0
+        return np.zeros(11), {"in_control": True}
+
+    def step(self, action):
+        self.sent.append(float(action[0]))
+        self.t += 1
+        done = self.t >= self.steps
+        return np.zeros(11), 0.0, done, False, {"in_control": self.t % 2 == 0, "success": done}
+
+
+def test_run_episode_counts_only_applied_actions():
+    env, seen = _HandOverEnv(8), []
+
+    def schedule(obs, k):
+        seen.append(k)
+        return 1.0 + k
+
+    assert feasibility.run_episode(env, "any", 1, 0, schedule)
+    assert seen == [0, 1, 2, 3]  # asked on the 4 applied steps, k counting them
+    assert env.sent == [1.0, 0.0, 2.0, 0.0, 3.0, 0.0, 4.0, 0.0]

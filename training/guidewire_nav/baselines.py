@@ -17,7 +17,17 @@ import numpy as np
 
 from guidewire_nav.env import GuidewireEnv
 
-OMEGA = 9  # observation index of omega (both layouts, obs/1 and obs/2)
+OMEGA = 9  # observation index of omega in every layout (the server's spec names it: env.observation_names)
+
+# The scripted omega rule, the one Python implementation (C++: scripted_omega_action, apps/runner/controller.hpp,
+# the same threshold): turn at full rate while the tip bends less than 18 degrees short of straight away from the
+# wrong branch (omega > release), then hold. Used by OmegaController and the aim-* schedules of feasibility.py.
+SCRIPTED_OMEGA_RELEASE = -0.95
+
+
+def scripted_omega_action(omega: float, release: float = SCRIPTED_OMEGA_RELEASE, turn: float = 1.0) -> float:
+    """The rotation action of the scripted omega rule: `turn` (+1 or -1) while omega > release, else 0."""
+    return turn if float(omega) > release else 0.0
 
 
 class PushOnly:
@@ -44,14 +54,14 @@ class OmegaController:
     name = "omega_scripted"
     turn = 1.0
 
-    def __init__(self, release: float = -0.95):
+    def __init__(self, release: float = SCRIPTED_OMEGA_RELEASE):
         self.release = release
 
     def reset(self) -> None:
         pass
 
     def __call__(self, obs: np.ndarray) -> float:
-        return self.turn if float(obs[OMEGA]) > self.release else 0.0
+        return scripted_omega_action(obs[OMEGA], self.release, self.turn)
 
 
 class OmegaControllerCCW(OmegaController):

@@ -30,12 +30,14 @@ from pathlib import Path
 
 import numpy as np
 
-from guidewire_nav.baselines import OMEGA  # observation index of omega
+from guidewire_nav.baselines import OMEGA, scripted_omega_action  # observation index of omega; the scripted rule
 
+# schedule(obs, k): the action from the observation and k, the number of actions the task has applied so far
+# (steps in control: on trees only near a bifurcation), as the C++ schedules count them.
 SCHEDULES = {
-    "aim-0.95": lambda obs, k: 1.0 if obs[OMEGA] > -0.95 else 0.0,
-    "aim-0.7": lambda obs, k: 1.0 if obs[OMEGA] > -0.7 else 0.0,
-    "aim-0.95-ccw": lambda obs, k: -1.0 if obs[OMEGA] > -0.95 else 0.0,
+    "aim-0.95": lambda obs, k: scripted_omega_action(obs[OMEGA], -0.95, 1.0),
+    "aim-0.7": lambda obs, k: scripted_omega_action(obs[OMEGA], -0.7, 1.0),
+    "aim-0.95-ccw": lambda obs, k: scripted_omega_action(obs[OMEGA], -0.95, -1.0),
     "spin-1": lambda obs, k: -1.0,
     "spin-0.3": lambda obs, k: -0.3,
     "spin+0.3": lambda obs, k: 0.3,
@@ -46,11 +48,13 @@ SCHEDULES = {
 
 def run_episode(env, anatomy: str, target: int, seed: int, schedule) -> bool:
     """One seeded episode under `schedule`; whether it reached the target."""
-    obs, _ = env.reset(seed=seed, options={"anatomy": anatomy, "target": target})
-    k, done, info = 0, False, {}
+    obs, info = env.reset(seed=seed, options={"anatomy": anatomy, "target": target})
+    k, done = 0, False
     while not done:
-        obs, _, terminated, truncated, info = env.step(np.array([schedule(obs, k)], dtype=np.float32))
-        k += 1
+        applied = bool(info.get("in_control", True))  # the task applies the next action (else it is ignored)
+        action = schedule(obs, k) if applied else 0.0
+        obs, _, terminated, truncated, info = env.step(np.array([action], dtype=np.float32))
+        k += applied
         done = terminated or truncated
     return bool(info["success"])
 

@@ -66,8 +66,8 @@ EpisodeTrace run_episode(const NavigationTask& task, int anatomy, int target_id,
   int frame = 0;
   record_frame(task, s, StepInfo{}, 0.0, s.in_control, frame, options, trace);
   // omega when the tip reached each bifurcation centre on the course (goal k belongs to bifurcation k).
-  const std::vector<CourseBifurcation>& bifurcations = s.course->bifurcations;
-  std::vector<double> omega_at_centre(bifurcations.size(), std::numeric_limits<double>::quiet_NaN());
+  // (Their arcs are read from current_course: on a moving wall the course changes shape every step.)
+  std::vector<double> omega_at_centre(s.course->bifurcations.size(), std::numeric_limits<double>::quiet_NaN());
   std::size_t next_centre = 0;
   bool strict_over = false;
   for (;;) {
@@ -76,7 +76,8 @@ EpisodeTrace run_episode(const NavigationTask& task, int anatomy, int target_id,
     const StepOutcome out = step_episode(task, s, action, {});
     ++frame;
     record_frame(task, s, out.info, action, in_control, frame, options, trace);
-    for (; !strict_over && next_centre < bifurcations.size() && s.progress_mm >= bifurcations[next_centre].arc;
+    for (; !strict_over && next_centre < omega_at_centre.size() &&
+           s.progress_mm >= current_course(s).bifurcations[next_centre].arc;
          ++next_centre)
       omega_at_centre[next_centre] = s.obs[obs_index::kOmega];
     if (out.info.strict_end) {  // the paper's episode ends here (with recovery the procedure may go on)

@@ -64,7 +64,10 @@ constexpr double kFoldedTheta = -0.5;
 // advances the goal and the progress bookkeeping. `first` = at reset (history = current values).
 void observe(const NavigationTask& task, EpisodeState& s, bool first) {
   const TaskConfig& c = task.config;
-  const Course& course = *s.course;
+  const GraphMotion& motion = task.graph_motions[static_cast<size_t>(s.anatomy)];
+  if (motion.points > 0)  // a moving wall: the course where the vessel is now (course_shape.hpp)
+    course_shape_at(task.anatomies[static_cast<size_t>(s.anatomy)], motion, c, s.target_id, s.wire.time, s.shape);
+  const Course& course = current_course(s);
   sample_tip(task.wire, s.wire, c.tip_sample_spacing_mm, s.samples);
   const Eigen::Vector3d tip = s.samples.position[0];
 
@@ -145,7 +148,7 @@ double disturbance_rate(const TaskConfig& c, const EpisodeState& s) {
 void draw_random_start(const NavigationTask& task, SplitMix64& rng, EpisodeState& s) {
   const TaskConfig& c = task.config;
   if (c.random_start_probability <= 0 || rng.uniform() >= c.random_start_probability) return;
-  const Course& course = *s.course;
+  const Course& course = current_course(s);
   const double first_centre = course.bifurcations.empty() ? course.line.length : course.bifurcations.front().arc;
   const double from = s.progress_mm;
   const double to = from + (first_centre - c.random_start_margin_mm - from) * rng.uniform();
@@ -220,7 +223,7 @@ StepInfo episode_info(const NavigationTask& task, const EpisodeState& s) {
   info.goal = s.goal;
   info.goals = s.course ? static_cast<int>(s.course->goal_arc.size()) : 0;
   info.lambda_mm = s.lambda_mm;
-  info.tip_to_target_mm = s.course ? (s.tip - s.course->target).norm() : 0.0;
+  info.tip_to_target_mm = s.course ? (s.tip - current_course(s).target).norm() : 0.0;
   info.progress_mm = s.progress_mm;
   info.inserted_mm = s.wire.inserted_length_mm;
   (void)task;
@@ -241,7 +244,7 @@ void start_retraction(const NavigationTask& task, EpisodeState& s, int lost) {
   ++s.recovery_attempts_used;
   s.retracting = true;
   s.in_control = false;
-  s.retract_to_mm = retract_target(c, *s.course, s.progress_mm, lost);
+  s.retract_to_mm = retract_target(c, current_course(s), s.progress_mm, lost);
   const double pull_per_step = env_dt(c) * c.recovery_pull_mm_per_s;
   // Twice the steps the distance needs (a wire that slides back slower than it is pulled), and 1 s more.
   s.retract_steps_left =
@@ -255,7 +258,7 @@ void start_retraction(const NavigationTask& task, EpisodeState& s, int lost) {
 // hand-over), and the stall test starts again.
 void end_retraction(const NavigationTask& task, EpisodeState& s) {
   const TaskConfig& c = task.config;
-  const Course& course = *s.course;
+  const Course& course = current_course(s);
   s.retracting = false;
   int goal = 0;
   const int last_goal = static_cast<int>(course.goal_arc.size()) - 1;
@@ -374,7 +377,8 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, double act
   out.info = episode_info(task, s);
   fill_force(out.info);
   out.info.success = out.info.tip_to_target_mm <= c.success_radius_mm;
-  const int lost = out.info.success ? -1 : wrong_branch_entered(c, anatomy, *s.course, s.tip, s.course_distance_mm);
+  const Anatomy& geometry = s.shape.valid ? s.shape.anatomy : anatomy;  // the moving wall's, at this time
+  const int lost = out.info.success ? -1 : wrong_branch_entered(c, geometry, current_course(s), s.tip, s.course_distance_mm);
   out.info.wrong_branch = lost >= 0;
   out.terminated = out.info.success || out.info.wrong_branch;
   if (!out.terminated) {

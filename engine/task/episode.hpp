@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 
+#include "engine/task/course_shape.hpp"
 #include "engine/task/navigation_task.hpp"
 #include "engine/task/observation.hpp"
 #include "engine/task/tip_samples.hpp"
@@ -50,7 +51,14 @@ struct EpisodeState {
   int turn_steps_left = 0;         // env steps of the recovery turn still to apply
   int procedure_max_steps = 0;     // step limit with recovery: max_steps + recovery_time_s; else max_steps
   TipSamples samples;              // scratch, kept here so stepping does not allocate
+  // Moving wall (issue 36): the course in the wall's shape at the last observation's time (wire.time),
+  // which the observation, the control spheres and the end tests read (current_course). Arcs (progress_mm,
+  // lambda, goal arcs) are then measured along the current centerline. Never set on a static wall.
+  CourseShape shape;
 };
+
+// The course geometry the episode reads now: s.shape.course on a moving wall, else the task's *s.course.
+inline const Course& current_course(const EpisodeState& s) { return s.shape.valid ? s.shape.course : *s.course; }
 
 // Why an episode ended (or that it did not) and what the agent cannot see but a user wants to log.
 struct StepInfo {

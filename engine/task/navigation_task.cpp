@@ -21,6 +21,7 @@ NavigationTask make_navigation_task(const TaskConfig& config, const WireParams& 
       }
     }
     task.courses.push_back(std::move(courses));
+    task.graph_motions.push_back(a.scene && a.scene->motion ? make_graph_motion(a.graph, *a.scene) : GraphMotion{});
   }
   return task;
 }

@@ -7,6 +7,7 @@
 
 #include "engine/task/anatomy.hpp"
 #include "engine/task/course.hpp"
+#include "engine/task/graph_motion.hpp"
 #include "engine/task/task_config.hpp"
 #include "engine/wire/wire_model.hpp"
 #include "engine/wire/wire_params.hpp"
@@ -18,9 +19,13 @@ struct NavigationTask {
   WireModel wire;
   std::vector<Anatomy> anatomies;
   std::vector<std::vector<Course>> courses;  // courses[a][k] leads to target k + 1 of anatomy a
+  // Per anatomy: how its centerline follows a moving wall (issue 36; graph_motion.hpp); empty (points = 0)
+  // when its wall is static (anatomy.scene has no motion), and the episodes then read `courses` alone.
+  std::vector<GraphMotion> graph_motions;
 };
 
-// Checks `config`, builds the wire model (dt = config.dt_s) and every course. Throws
+// Checks `config`, builds the wire model (dt = config.dt_s), every course (on the rest graph) and, for an
+// anatomy whose scene moves, its GraphMotion. Throws
 // std::invalid_argument for a bad config, no anatomies, or an anatomy whose target cannot be planned.
 NavigationTask make_navigation_task(const TaskConfig& config, const WireParams& wire, std::vector<Anatomy> anatomies);
 

@@ -5,6 +5,7 @@
 #include <csignal>
 #include <iostream>
 
+#include "apps/runner/heart_motion.hpp"
 #include "apps/runner/navigation_anatomy.hpp"
 #include "apps/server/tcp_server.hpp"
 #include "engine/task/navigation_task.hpp"
@@ -64,6 +65,12 @@ int main(int argc, char** argv) {
                  "training: per-episode probability of starting part-way along the access vessel (wire pushed "
                  "without rotation to a random depth before the first bifurcation; 0 = the paper's task)")
       ->capture_default_str();
+  gw::HeartSettings heart;
+  app.add_option("--heart-rate", heart.heart_rate_bpm,
+                 "every anatomy beats at this rate, bpm (0 = static; docs/beating_heart.md), following --motion or its "
+                 "own field (STEM.motion.json or the spec's deformation beside its mesh)")
+      ->check(CLI::Range(0.0, 300.0));
+  app.add_option("--motion", heart.motion_path, "cardiac motion JSON for every anatomy (docs/beating_heart.md)");
   app.add_option("--step-time-limit", options.session.step_time_limit_s,
                  "seconds one env step may run before it is cut off with an error (0 = none)")
       ->capture_default_str();
@@ -78,7 +85,9 @@ int main(int argc, char** argv) {
     config.task_scale = gw::parse_task_scale(task_scale);
     gw::observation_layout(config);  // refuses omega_side in the paper's plane, naming why
     const gw::WireParams wire = wire_json.empty() ? gw::default_wire_params() : gw::load_wire_params(wire_json);
-    const gw::NavigationTask task = gw::make_navigation_task(config, wire, gw::load_indexed_anatomies(anatomies, index));
+    std::vector<gw::Anatomy> loaded = gw::load_indexed_anatomies(anatomies, index);
+    for (gw::Anatomy& a : loaded) gw::apply_heart_settings(a, heart);  // no-op without --heart-rate / --motion
+    const gw::NavigationTask task = gw::make_navigation_task(config, wire, std::move(loaded));
     gw::TcpServer server(task, options);
     g_server = &server;
     std::signal(SIGINT, on_signal);

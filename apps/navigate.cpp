@@ -15,6 +15,7 @@
 #include "apps/runner/controller.hpp"
 #include "apps/runner/rotation_schedules.hpp"
 #include "apps/runner/episode_batch.hpp"
+#include "apps/runner/heart_motion.hpp"
 #include "apps/runner/navigation_anatomy.hpp"
 #include "apps/runner/navigation_outputs.hpp"
 #include "centerline/extract/target_table.hpp"
@@ -74,6 +75,12 @@ int main(int argc, char** argv) {
   app.add_option("--junctions", junctions, "how a junction's wrong branches enter omega: separate (the paper's task, every table row) or combined (k-way junctions and closely spaced forks aimed at together, layout obs/4; docs/junctions.md)");
   std::string task_scale = "auto";
   app.add_option("--task-scale", task_scale, "the wrong-branch and control-zone lengths in millimetres (fixed: the paper's, set for coronaries) or from the vessel's walls (vessel: a wrong branch is entered past its ostium, inside its lumen); auto = vessel for an inlet wider than 4 mm in radius (docs/vessel_scale.md)");
+  gw::HeartSettings heart;
+  app.add_option("--heart-rate", heart.heart_rate_bpm,
+                 "the vessel beats at this rate, bpm (0 = static; docs/beating_heart.md): its wall and centerline "
+                 "follow --motion, else the anatomy's own field (STEM.motion.json or the spec's deformation beside the mesh)")
+      ->check(CLI::Range(0.0, 300.0));
+  app.add_option("--motion", heart.motion_path, "cardiac motion JSON (engine/scene/wall_motion.hpp; docs/beating_heart.md)");
   app.add_option("--threads", threads, "episodes run in parallel");
   app.add_option("--out", out_dir, "write trajectories (JSON, VTK .vtp) and biplane PNGs here");
   app.add_flag("--json", json, "print one JSON summary on stdout");
@@ -122,7 +129,9 @@ int main(int argc, char** argv) {
     config.recovery_attempts = recovery;
 
     const gw::WireParams wire = wire_path.empty() ? gw::default_wire_params() : gw::load_wire_params(wire_path);
-    const gw::NavigationTask task = gw::make_navigation_task(config, wire, {nav.anatomy});
+    gw::Anatomy anatomy = nav.anatomy;
+    const std::string motion_source = gw::apply_heart_settings(anatomy, heart);  // "" = a static wall
+    const gw::NavigationTask task = gw::make_navigation_task(config, wire, {anatomy});
     std::vector<gw::EpisodeRequest> requests;
     try {
       requests = gw::plan_episodes(task, 0, target, episodes, seed);
@@ -156,6 +165,9 @@ int main(int argc, char** argv) {
     summary["push_mm_per_s"] = push_mm_per_s;
     summary["task_scale"] = task.courses.at(0).at(0).vessel_scale ? "vessel" : "fixed";  // --task-scale, resolved
     if (recovery > 0) summary["recovery_attempts"] = recovery;
+    if (!motion_source.empty())
+      summary["heart"] = {{"heart_rate_bpm", anatomy.scene->motion ? anatomy.scene->motion->heart_rate_bpm : 0.0},
+                          {"motion", motion_source}};
     summary["wall_time_s"] = wall;
     if (!out_dir.empty()) {
       // The PNG's own summary line names anatomy, target, controller and (for one episode) the seed; this

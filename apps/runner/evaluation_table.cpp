@@ -16,6 +16,7 @@
 #include "apps/runner/controller.hpp"
 #include "apps/runner/episode_batch.hpp"
 #include "apps/runner/evaluation_progress.hpp"
+#include "apps/runner/heart_motion.hpp"
 #include "apps/runner/navigation_anatomy.hpp"
 #include "apps/runner/reachability.hpp"
 #include "apps/runner/success_statistics.hpp"
@@ -40,6 +41,10 @@ std::vector<EvaluationRow> paper_table() {
       // Beyond the paper (issue 41): junctions the training set never had (anatomies/junctions).
       {"trifurcation tree", {"coronary_trifurcation"}, 50, -1.0, false},
       {"closely spaced forks", {"close_forks"}, 50, -1.0, false},
+      // Beyond the paper (issue 36): the coronary tree beating, its generator's deformation field played over
+      // the cardiac cycle (docs/beating_heart.md); the paper's deformed coronary row is its frozen end-systole.
+      {"beating coronary 60 bpm", {"coronary"}, 50, -1.0, false, 60.0},
+      {"beating coronary 100 bpm", {"coronary"}, 50, -1.0, false, 100.0},
   };
 }
 
@@ -161,6 +166,11 @@ std::vector<Anatomy> load_row_anatomies(const EvaluationRow& row, const Evaluati
     load.inlet = read_centerline(src.at(0).truth).inlet.position;
     NavigationAnatomy nav = load_navigation_anatomy(src.at(0).mesh, load);
     nav.anatomy.name = name;
+    if (row.heart_rate_bpm > 0) {  // a beating row: the anatomy's own field at the row's rate
+      HeartSettings heart;
+      heart.heart_rate_bpm = row.heart_rate_bpm;
+      apply_heart_settings(nav.anatomy, heart);
+    }
     anatomies.push_back(std::move(nav.anatomy));
   }
   return anatomies;
@@ -251,6 +261,7 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
                         {"paper", row.paper_success}, {"paper_episodes", row.episodes},
                         {"results", nlohmann::json::object()},
                         {"notes", nlohmann::json::array()}};
+    if (row.heart_rate_bpm > 0) r["heart_rate_bpm"] = row.heart_rate_bpm;  // only then: older rows stay as they were
     const std::string policy = row_policy(row);
     try {
       const std::vector<Anatomy> anatomies = load_row_anatomies(row, o);

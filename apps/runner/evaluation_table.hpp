@@ -20,6 +20,8 @@ struct EvaluationRow {
   double paper_success = 0.0;         // the paper's success rate for this case, in [0, 1]; < 0: a row the
                                       // paper did not have (the junction rows, issue 41)
   bool base_policy = false;           // sensitivity rows: the policy trained on sensitivity/base only
+  double heart_rate_bpm = 0;          // > 0: the wall beats at this rate (issue 36; the anatomy's own cardiac
+                                      // field, apps/runner/heart_motion.hpp), the course following it
 };
 
 // The rows of the paper's table, in its order.

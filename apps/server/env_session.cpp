@@ -4,6 +4,8 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "engine/scene/wall_motion.hpp"
+
 namespace gw {
 
 using nlohmann::json;
@@ -63,10 +65,13 @@ std::string spec_json(const NavigationTask& task) {
   json names = json::array();
   for (int i = 0; i < size; ++i) names.push_back(observation_names()[static_cast<size_t>(i)]);
   json anatomies = json::array();
-  for (size_t a = 0; a < task.anatomies.size(); ++a)
+  for (size_t a = 0; a < task.anatomies.size(); ++a) {
     anatomies.push_back({{"name", task.anatomies[a].name},
                          {"index", a},
                          {"targets", task.courses[a].size()}});
+    const auto& scene = task.anatomies[a].scene;  // a beating wall (--heart-rate): its rate
+    if (scene && scene->motion) anatomies.back()["heart_rate_bpm"] = scene->motion->heart_rate_bpm;
+  }
   const TaskConfig& c = task.config;
   json j = {{"ok", true},
             {"protocol", kProtocolVersion},

@@ -273,3 +273,32 @@ def test_combined_junctions_are_layout_obs4_and_change_nothing_on_a_two_way_fork
     finally:
         side.close()
         combined.close()
+
+
+def test_heart_rate_makes_the_anatomy_beat_and_is_reported(server_bin):
+    # The shipped coronary beats with its own field (docs/beating_heart.md): the same start as the static vessel
+    # (the wall is at rest at t = 0), then the observation changes as the tree moves under the wire.
+    static = GuidewireEnv(anatomies="coronary", options={"target": 1})
+    beating = GuidewireEnv(anatomies="coronary", options={"target": 1}, heart_rate_bpm=100)
+    try:
+        assert "heart_rate_bpm" not in static.spec_reply["anatomies"][0]
+        assert beating.spec_reply["anatomies"][0]["heart_rate_bpm"] == 100.0
+        a, _ = static.reset(seed=2)
+        b, _ = beating.reset(seed=2)
+        assert np.array_equal(a, b)
+        differs = False
+        for _ in range(12):
+            a, *_ = static.step(np.zeros(1, dtype=np.float32))
+            b, *_ = beating.step(np.zeros(1, dtype=np.float32))
+            differs = differs or not np.array_equal(a, b)
+        assert differs
+    finally:
+        static.close()
+        beating.close()
+    with pytest.raises(ValueError, match="heart_rate_bpm"):
+        GuidewireEnv(port=1, heart_rate_bpm=60)
+    # A mesh with no cardiac field of its own needs a motion file: refused by name.
+    refused = subprocess.run([str(server_bin), "--port", "0", "--anatomies", "t1_straight_y", "--heart-rate", "60"],
+                             capture_output=True, text=True, timeout=60)
+    assert refused.returncode == 1
+    assert "--motion" in refused.stderr

@@ -109,10 +109,24 @@ class GuidewireEnv(gym.Env):
         server_binary: str | os.PathLike | None = None,
         server_args: list[str] | None = None,
         timeout: float = 120.0,
+        heart_rate_bpm: float = 0.0,
+        motion: str | os.PathLike | None = None,
     ):
         """``options`` are the default reset options ({"anatomy": name or index, "target": id});
-        without them every reset draws an anatomy and a target from its seed."""
+        without them every reset draws an anatomy and a target from its seed.
+        ``heart_rate_bpm`` > 0 (or a ``motion`` JSON) makes every anatomy's vessel beat, its wall and centerline
+        following ``motion`` or the anatomy's own cardiac field (the server's ``--heart-rate``/``--motion``,
+        docs/beating_heart.md); only for a server this environment starts itself."""
         super().__init__()
+        heart_args: list[str] = []
+        if heart_rate_bpm:
+            heart_args += ["--heart-rate", repr(float(heart_rate_bpm))]
+        if motion is not None:
+            heart_args += ["--motion", str(motion)]
+        if heart_args and port is not None:
+            raise ValueError("heart_rate_bpm and motion configure a server this environment starts; "
+                             "start the remote server with --heart-rate/--motion instead")
+        server_args = [*(server_args or []), *heart_args] if heart_args else server_args
         self._proc: subprocess.Popen | None = None
         self._sock: socket.socket | None = None
         if port is None:

@@ -1,0 +1,108 @@
+// The beating heart's settings (issue 36 item 4, apps/runner/heart_motion.hpp): which cardiac motion an
+// anatomy gets, that 0 bpm changes nothing, a motion frozen in a deformed shape takes the centerline with
+// it, and evaluate's beating rows (item 5) come after the paper's rows, which stay as they were.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+
+#include "apps/runner/evaluation_table.hpp"
+#include "apps/runner/heart_motion.hpp"
+#include "engine/scene/moving_wall.hpp"
+#include "engine/task/navigation_task.hpp"
+#include "engine/wire/wire_params.hpp"
+
+namespace {
+
+const std::string kCoronary = std::string(GW_SOURCE_DIR) + "/anatomies/test/coronary/coronary";
+const std::string kDeformed = std::string(GW_SOURCE_DIR) + "/anatomies/test/coronary_deformed/coronary_deformed";
+
+gw::Anatomy coronary() { return gw::load_anatomy("coronary", kCoronary + ".stl", kCoronary + ".truth.json"); }
+
+}  // namespace
+
+TEST_CASE("heart motion: the shipped coronary's own field, held at the inlet, at the asked rate", "[runner][heart]") {
+  const gw::Anatomy a = coronary();
+  gw::HeartSettings h;
+  h.heart_rate_bpm = 100;
+  const gw::HeartMotion m = gw::resolve_heart_motion(a.mesh_path, a.graph.inlet.position, h);
+  CHECK(m.source.find("coronary.spec.json deformation") != std::string::npos);
+  CHECK(m.motion.heart_rate_bpm == 100);
+  CHECK(m.motion.contraction_mm == 0.12);  // the generator's 12% radial contraction, 10% shortening, 2.5 deg/cm
+  CHECK(m.motion.shortening_mm == 0.1);
+  CHECK(m.motion.twist_deg_per_cm == 2.5);
+  CHECK(m.motion.axis_direction == Eigen::Vector3d(0, 0, -1));
+  REQUIRE(m.motion.has_fixed_point);
+  CHECK(m.motion.fixed_point == a.graph.inlet.position);
+  // The deformed coronary is the field's phase 1 already: refused, not deformed twice.
+  CHECK_THROWS_WITH(gw::resolve_heart_motion(kDeformed + ".stl", a.graph.inlet.position, h),
+                    Catch::Contains("phase 1"));
+  // No motion beside a mesh, or a spec without a field: the error asks for --motion.
+  CHECK_THROWS_WITH(gw::resolve_heart_motion("/nonexistent/tube.stl", Eigen::Vector3d::Zero(), h),
+                    Catch::Contains("--motion"));
+  CHECK_THROWS_WITH(gw::resolve_heart_motion(std::string(GW_SOURCE_DIR) + "/anatomies/train/t1_straight_y/t1_straight_y.stl",
+                                             Eigen::Vector3d::Zero(), h),
+                    Catch::Contains("--motion"));
+}
+
+TEST_CASE("heart motion: 0 bpm leaves the anatomy as it is, a beating one keeps its rest graph", "[runner][heart]") {
+  gw::Anatomy a = coronary();
+  const auto scene = a.scene;
+  CHECK(gw::apply_heart_settings(a, gw::HeartSettings{}).empty());
+  CHECK(a.scene == scene);
+  gw::HeartSettings h;
+  h.heart_rate_bpm = 60;
+  const std::string source = gw::apply_heart_settings(a, h);
+  CHECK_FALSE(source.empty());
+  REQUIRE(a.scene->motion);
+  CHECK(a.scene->motion->heart_rate_bpm == 60);
+  const gw::NavigationTask task = gw::make_navigation_task({}, gw::default_wire_params(), {a});
+  CHECK(task.graph_motions[0].points > 0);
+  // The inlet (the introducer) stays put; the far end of the tree moves by millimetres at end-systole.
+  const double systole = 60.0 / 60.0 / 3.0;
+  CHECK((gw::current_wall_vertex(*a.scene, 0, 0.0) - a.scene->mesh.V.row(0).transpose()).norm() == 0.0);
+  gw::CenterlineGraph now;
+  gw::graph_at(a.graph, *a.scene, task.graph_motions[0], systole, now);
+  CHECK((now.inlet.position - a.graph.inlet.position).norm() < 1e-12);
+  double moved = 0;
+  for (size_t k = 0; k < a.graph.targets.size(); ++k)
+    moved = std::max(moved, (now.targets[k].position - a.graph.targets[k].position).norm());
+  CHECK(moved > 3.0);
+}
+
+TEST_CASE("heart motion: a motion frozen in a deformed shape (0 bpm at a phase offset) moves the centerline too",
+          "[runner][heart]") {
+  gw::Anatomy a = coronary();
+  const gw::CenterlineGraph rest = a.graph;
+  gw::CardiacMotion m = gw::cardiac_motion_from_spec(kCoronary + ".spec.json", a.graph.inlet.position);
+  m.heart_rate_bpm = 0;
+  m.phase_offset = 1.0 / 3.0;  // end-systole
+  gw::make_anatomy_beat(a, m);
+  CHECK_FALSE(a.scene->motion);  // a static scene of the frozen shape
+  const gw::WallMotion field = gw::cardiac_wall_motion(coronary().scene->mesh, m);
+  Eigen::Vector3d x;
+  REQUIRE(gw::wall_field_position(field, rest.targets[0].position, 0.0, x));
+  CHECK((a.graph.targets[0].position - x).norm() < 1e-9);
+  CHECK((a.graph.targets[0].position - rest.targets[0].position).norm() > 1.0);
+  CHECK(a.branch_lines[0].points.front() == a.graph.branches[0].points.front());
+}
+
+TEST_CASE("evaluate: the beating coronary rows follow the paper's rows, which are unchanged", "[runner][heart]") {
+  const std::vector<gw::EvaluationRow> table = gw::paper_table();
+  REQUIRE(table.size() >= 12);
+  CHECK(table[8].name == "coronary-like");
+  CHECK(table[9].name == "deformed coronary");
+  int beating = 0;
+  for (const gw::EvaluationRow& row : table) {
+    if (row.name.rfind("beating coronary", 0) != 0) {
+      CHECK(row.heart_rate_bpm == 0);  // every other row: a static wall, its episodes as before
+      continue;
+    }
+    ++beating;
+    CHECK(row.anatomies == std::vector<std::string>{"coronary"});
+    CHECK(row.episodes == 50);
+    CHECK(row.name == "beating coronary " + std::to_string(static_cast<int>(row.heart_rate_bpm)) + " bpm");
+  }
+  CHECK(beating == 2);
+  CHECK(gw::select_rows(table, "coronary 60 bpm").at(0).heart_rate_bpm == 60);
+  CHECK(gw::select_rows(table, "coronary 100 bpm").at(0).heart_rate_bpm == 100);
+}

@@ -77,6 +77,33 @@ def cell(counts):
     return f"{k}/{n} | {100 * k / n:.0f}% | {100 * lo:.0f}-{100 * hi:.0f}%"
 
 
+def vessel_scale_section():
+    """The same arches with --task-scale vessel (ARCH_CONTROLLER_vessel.json: 10 episodes per target, seeds 0-39
+    in target order) beside the fixed (paper's) rules of the runs above (their own seeds: 50 or 25 per target)."""
+    out = ["\n### Vessel-scale task beside the fixed rules (fixed: the runs above; vessel: 10 episodes per target)\n",
+           "| arch | target | controller | fixed k/n | vessel k/n | vessel 95 % CI | vessel outcomes |",
+           "|---|---|---|---|---|---|---|"]
+    for a in ARCHES:
+        names = target_names(a)
+        for c in CONTROLLERS:
+            vessel = load(a, c, "_vessel")
+            if vessel is None:
+                out.append(f"| {a} | | {c} | | missing | | |")
+                continue
+            fixed = load(a, c)
+            for tid in sorted(names):
+                v = [r for r in vessel["results"] if r["target"] == tid]
+                f = [r for r in fixed["results"] if r["target"] == tid] if fixed else []
+                kv = sum(r["outcome"] == "success" for r in v)
+                kf = sum(r["outcome"] == "success" for r in f)
+                lo, hi = wilson(kv, len(v))
+                oc = ", ".join(f"{o} {n}" for o in OUTCOMES if (n := sum(r["outcome"] == o for r in v)) and o != "success")
+                fixed_cell = f"{kf}/{len(f)}" if f else "missing"
+                out.append(f"| {a} | {tid}: {names[tid][0]} | {c} | {fixed_cell} | {kv}/{len(v)} | "
+                           f"{100 * lo:.0f}-{100 * hi:.0f}% | {oc} |")
+    return out
+
+
 def main():
     out = []
     missing = []
@@ -152,6 +179,7 @@ def main():
         out.append(f"- arch_type1 policy, coronary wire: {cmp_['episodes']} episodes, {cmp_['wall_time_s']:.0f} s")
     if missing:
         out.append("\nMissing runs: " + ", ".join(missing))
+    out.extend(vessel_scale_section())
     print("\n".join(out))
     return 0
 

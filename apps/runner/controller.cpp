@@ -69,7 +69,7 @@ class ScriptedOmegaController final : public Controller {
   double act(const Observation& obs) override {
     // omega = +1: the tip bends straight at the wrong branch; -1: straight away from it. Turning
     // one way at a constant rate sweeps the bend direction round until omega drops below release.
-    return obs[obs_index::kOmega] > release_ ? turn_ : 0.0;
+    return scripted_omega_action(obs[obs_index::kOmega], release_, turn_);
   }
 
  private:
@@ -93,7 +93,7 @@ std::unique_ptr<Controller> make_controller(const std::string& kind, const std::
   if (kind == "policy" || kind == "sac-policy") return make_policy_controller(actor_path);
   if (kind == "push-only") return make_push_only_controller();
   if (kind == "scripted-omega") return make_scripted_omega_controller();
-  if (kind == "scripted-omega-ccw") return make_scripted_omega_controller(-0.95, -1.0);
+  if (kind == "scripted-omega-ccw") return make_scripted_omega_controller(kScriptedOmegaRelease, -1.0);
   const auto& schedules = rotation_schedule_names();
   if (std::find(schedules.begin(), schedules.end(), kind) != schedules.end()) return make_rotation_schedule(kind);
   throw std::invalid_argument("unknown controller '" + kind +

@@ -39,7 +39,13 @@ std::unique_ptr<Controller> make_push_only_controller();
 // (just short of -1, on the side it came from) depends on that choice, and on a shallow fork that side
 // can decide the branch: the table runs both so a baseline's lead is not read as skill when it is the
 // direction (results table, 2026-11-30: coronary 94 vs 82%, deformed coronary 74 vs 58%).
-std::unique_ptr<Controller> make_scripted_omega_controller(double release = -0.95, double turn = 1.0);
+inline constexpr double kScriptedOmegaRelease = -0.95;
+std::unique_ptr<Controller> make_scripted_omega_controller(double release = kScriptedOmegaRelease, double turn = 1.0);
+
+// The scripted rule itself, the one C++ implementation (the controller above and the aim-* rotation schedules;
+// Python: guidewire_nav.baselines.scripted_omega_action). Inputs: omega (observation entry 9), the release
+// threshold, the turn direction (+1 / -1). Output: the rotation action, `turn` while omega > release, else 0.
+inline double scripted_omega_action(double omega, double release, double turn) { return omega > release ? turn : 0.0; }
 
 // "policy" (needs `actor_path`) | "push-only" | "scripted-omega" | "scripted-omega-ccw" | a rotation schedule
 // (rotation_schedules.hpp: aim-0.95, spin+1, wiggle, ...); throws std::invalid_argument otherwise.

@@ -23,12 +23,12 @@ class ScheduleController final : public Controller {
 
 ScheduleController::Rule rule_of(const std::string& name) {
   auto aim = [](double release, double turn) {
-    return [=](const Observation& o, int) { return o[obs_index::kOmega] > release ? turn : 0.0; };
+    return [=](const Observation& o, int) { return scripted_omega_action(o[obs_index::kOmega], release, turn); };
   };
   auto spin = [](double rate) { return [=](const Observation&, int) { return rate; }; };
-  if (name == "aim-0.95") return aim(-0.95, 1.0);
+  if (name == "aim-0.95") return aim(kScriptedOmegaRelease, 1.0);  // the scripted-omega controller's rule
   if (name == "aim-0.7") return aim(-0.7, 1.0);
-  if (name == "aim-0.95-ccw") return aim(-0.95, -1.0);
+  if (name == "aim-0.95-ccw") return aim(kScriptedOmegaRelease, -1.0);
   if (name == "spin-1") return spin(-1.0);
   if (name == "spin-0.3") return spin(-0.3);
   if (name == "spin+0.3") return spin(0.3);

@@ -65,7 +65,10 @@ int main(int argc, char** argv) {
       else
         std::cerr << "centerline: " << path << ": " << stats.input_faces << " faces -> " << stats.skeleton_faces
                   << " for MCF; prepare " << stats.seconds_prepare << " s, skeleton " << stats.seconds_skeleton
-                  << " s, graph " << stats.seconds_graph << " s\n";
+                  << " s, graph " << stats.seconds_graph << " s; wall roughness "
+                  << (stats.wall_noise > 0 ? std::to_string(stats.wall_noise) + " of the radius (rough-wall section tests)"
+                                           : std::string("below 1% of the radius (smooth)"))
+                  << "\n";
       if (!hit) {
         std::cerr << "intake: " << path << ":";
         for (const auto& [stage, seconds] : stats.intake_seconds) std::cerr << " " << stage << " " << seconds << " s";

@@ -16,7 +16,7 @@
 namespace gw {
 
 // Bumped whenever the extraction changes its output.
-inline constexpr const char* kCenterlinePipelineVersion = "mcf-recentre-11-k-way-junctions";
+inline constexpr const char* kCenterlinePipelineVersion = "mcf-recentre-12-wall-noise";
 
 struct CacheOptions {
   bool enabled = true;

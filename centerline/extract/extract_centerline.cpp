@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "centerline/extract/estimate_wall_noise.hpp"
 #include "centerline/extract/junction_centre.hpp"
 #include "centerline/extract/merge_close_junctions.hpp"
 #include "centerline/extract/mcf_skeleton.hpp"
@@ -101,6 +102,11 @@ CenterlineGraph extract_centerline(const ClosedSurface& closed, const Centerline
   BranchRefinement refinement;
   refinement.spacing = opt.spacing;
   refinement.smoothing_iterations = opt.smoothing_iterations;
+  // A segmentation's voxel staircase: the section tests allow for it (0 on a smooth wall).
+  std::vector<std::vector<Eigen::Vector3d>> chain_points;
+  for (const auto& c : tree.chains) chain_points.push_back(c.points);
+  refinement.wall_noise = estimate_wall_noise(chain_points, wall, opt.spacing);
+  stats.wall_noise = refinement.wall_noise;
   std::vector<RefinedBranch> refined;
   std::vector<Eigen::Vector3d> nodes;
   std::vector<int> degree;
@@ -110,7 +116,7 @@ CenterlineGraph extract_centerline(const ClosedSurface& closed, const Centerline
     for (const auto& c : tree.chains)
       refined.push_back(refine_branch(c.points, degree[c.a] == 1, degree[c.b] == 1, wall, refinement));
     nodes = tree.nodes;
-    recentre_junctions(tree, nodes, refined, wall, opt.spacing);
+    recentre_junctions(tree, nodes, refined, wall, opt.spacing, 6.0, refinement.wall_noise);
     straighten_junction_links(tree, refined, opt.spacing);
   };
   refine_and_recentre();

@@ -31,6 +31,7 @@ struct CenterlineStats {
   std::vector<std::pair<std::string, double>> intake_seconds;  // per intake stage, when it ran (cache miss)
   std::vector<std::string> repairs;   // what the intake / close_surface changed, one line each
   std::vector<std::string> warnings;  // suspicions that changed nothing
+  double wall_noise = 0.0;  // estimate_wall_noise: the wall's roughness (rms share of the radius; 0: smooth)
 };
 
 // Extracts the centerline graph of `mesh` (mm):

@@ -8,6 +8,7 @@
 
 #include "centerline/extract/merged_lumen_axis.hpp"
 #include "centerline/extract/polyline_tools.hpp"
+#include "centerline/graph/centerline_graph.hpp"
 
 namespace gw {
 namespace {
@@ -22,6 +23,9 @@ constexpr double kCleanReach = 8.0;
 // Junctions closer than this many of the widest radius along the arm between them are two origins
 // on one wide vessel.
 constexpr double kCloseJunctions = 2.0;
+// A terminal arm shorter than this many of its widest radius is a skeleton spur (SkeletonCleanup's
+// spur_factor default).
+constexpr double kStubFactor = 2.0;
 
 // A branch seen from the junction: its points and radii running away from it.
 struct Arm {
@@ -61,7 +65,7 @@ double clean_start(const Arm& a, const std::vector<double>& s, double r) {
 
 void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& nodes,
                         std::vector<RefinedBranch>& branches, const VesselWall& wall, double spacing,
-                        double max_shift) {
+                        double max_shift, double wall_noise) {
   const std::vector<int> degree = tree.degree();
   for (size_t v = 0; v < tree.nodes.size(); ++v) {
     if (degree[v] < 3) continue;
@@ -70,6 +74,20 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
       if (tree.chains[i].a == static_cast<int>(v)) arms.push_back(arm_of(branches[i], i, false));
       if (tree.chains[i].b == static_cast<int>(v) && tree.chains[i].a != static_cast<int>(v))
         arms.push_back(arm_of(branches[i], i, true));
+    }
+    // A terminal stub (a skeleton spur that survived pruning, shorter than kStubFactor of its widest
+    // radius; the graph walk drops it too, extract_centerline.cpp) has no axis to fit: without it a
+    // junction with three real arms is still re-centred.
+    if (arms.size() >= 4) {
+      std::vector<Arm> real;
+      for (const Arm& a : arms) {
+        const SkeletonChain& c = tree.chains[a.chain];
+        const int far = a.reversed ? c.a : c.b;
+        const bool stub = degree[far] == 1 &&
+                          polyline_length(a.points) < kStubFactor * *std::max_element(a.radii.begin(), a.radii.end());
+        if (!stub) real.push_back(a);
+      }
+      if (real.size() >= 3) arms = std::move(real);
     }
     // One line per arm, fitted over about two radii where the arm becomes a clean tube
     // (or over [1.5 r, 3.5 r] when it never does).
@@ -187,7 +205,8 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
         const MergedLumenQuery query{
             [&](const Eigen::Vector3d& q) { return parent_distance(q) > parent_r + 0.5 * radius[side]; },
             [&](const Eigen::Vector3d& q) { return parent_distance(q) < 0.25 * parent_r; }};
-        const MergedLumenAxis traced = trace_merged_lumen_axis(wall, mid[side], dir[side], radius[side], query, spacing);
+        const MergedLumenAxis traced = trace_merged_lumen_axis(wall, mid[side], dir[side], radius[side], query, spacing,
+                                                                 25.0, wall_noise);
         if (traced.ok) {
           mid[side] = traced.point;
           dir[side] = traced.direction;
@@ -243,7 +262,8 @@ void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& 
             return true;
           },
           [&](const Eigen::Vector3d& q) { return (q - centre).dot(dir[k]) < 0.5 * radius[k]; }};
-      const MergedLumenAxis traced = trace_merged_lumen_axis(wall, mid[k], dir[k], radius[k], query, spacing);
+      const MergedLumenAxis traced = trace_merged_lumen_axis(wall, mid[k], dir[k], radius[k], query, spacing, 25.0,
+                                                               wall_noise);
       if (traced.ok) traced_centres[k] = traced.centres, traced_radii[k] = traced.radii;
     }
     // A traced arm runs from the centre (straight) to its nearest recovered centre, through the

@@ -20,9 +20,10 @@ namespace gw {
 // A side branch off a vessel that goes on (the other two arms nearly opposite, or, where that
 // vessel curves through the junction, the side arm clearly the thinnest) is traced back into the
 // lumen it shares with that vessel (merged_lumen_axis.hpp) before its axis is intersected with the
-// vessel's.
+// vessel's. `wall_noise` (estimate_wall_noise.hpp; 0 on a smooth surface) loosens the traced arcs'
+// fit tolerance by the wall's own roughness.
 void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& nodes,
                         std::vector<RefinedBranch>& branches, const VesselWall& wall, double spacing,
-                        double max_shift = 6.0);
+                        double max_shift = 6.0, double wall_noise = 0.0);
 
 }  // namespace gw

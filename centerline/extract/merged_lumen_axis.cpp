@@ -64,7 +64,8 @@ bool fit_free_radius(const std::vector<Eigen::Vector2d>& hits, Eigen::Vector2d& 
 
 MergedLumenAxis trace_merged_lumen_axis(const VesselWall& wall, const Eigen::Vector3d& point,
                                         const Eigen::Vector3d& direction, double radius,
-                                        const MergedLumenQuery& query, double step, double reach) {
+                                        const MergedLumenQuery& query, double step, double reach,
+                                        double wall_noise) {
   MergedLumenAxis out;
   constexpr int kRays = 72;
   Eigen::Vector3d p0 = point, d = direction.normalized();
@@ -99,7 +100,8 @@ MergedLumenAxis trace_merged_lumen_axis(const VesselWall& wall, const Eigen::Vec
         if (fit_free_radius(hits, free_c, free_r, free_residual) && std::abs(free_r - r) < 0.3 * r)
           c = free_c, r = free_r, residual = free_residual;
       }
-      if (c.norm() > 0.75 * r || residual > 0.08 * r || arc_span(hits, c) < 0.5 * M_PI) continue;
+      const double stray = wall_noise > 0 ? (0.08 + 3.0 * wall_noise) * r : 0.08 * r;
+      if (c.norm() > 0.75 * r || residual > stray || arc_span(hits, c) < 0.5 * M_PI) continue;
       centres.push_back(origin + c.x() * u + c.y() * v);
       radii.push_back(r);
       misses = 0;

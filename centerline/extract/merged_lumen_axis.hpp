@@ -39,9 +39,11 @@ struct MergedLumenQuery {
 // stations every `step` from `point` back towards the junction (at most `reach` radii, until four
 // stations in a row give no clean arc or `at_junction`). `ok` when at least four stations,
 // spanning at least 1.5 radii, give a clean arc and the axis through them is within 17 deg of
-// `direction`.
+// `direction`. An arc is clean when no hit strays more than 8% of the radius from its circle, plus
+// 3 `wall_noise` on a noisy wall (estimate_wall_noise.hpp; 0: smooth).
 MergedLumenAxis trace_merged_lumen_axis(const VesselWall& wall, const Eigen::Vector3d& point,
                                         const Eigen::Vector3d& direction, double radius,
-                                        const MergedLumenQuery& query, double step, double reach = 25.0);
+                                        const MergedLumenQuery& query, double step, double reach = 25.0,
+                                        double wall_noise = 0.0);
 
 }  // namespace gw

@@ -28,14 +28,14 @@ constexpr double kOpenReach = 20.0;
 // exceeds this (0: never).
 std::vector<double> tube_radii(const std::vector<Eigen::Vector3d>& p, const VesselWall& wall, int rays,
                                std::vector<Eigen::Vector3d>* centres, std::vector<double>* elongation = nullptr,
-                               double open_below = 0.0) {
+                               double open_below = 0.0, double wall_noise = 0.0) {
   const auto tangent = polyline_tangents(smooth_polyline(p, 4));
   std::vector<double> r(p.size(), std::nan(""));
   if (centres) *centres = p;
   if (elongation) elongation->assign(p.size(), std::numeric_limits<double>::infinity());
   for (size_t i = 0; i < p.size(); ++i) {
     const double near = wall.distance(p[i]);
-    CrossSection cs = fit_cross_section(wall, p[i], tangent[i], 4.0 * near + 1e-9, rays);
+    CrossSection cs = fit_cross_section(wall, p[i], tangent[i], 4.0 * near + 1e-9, rays, wall_noise);
     if (!cs.tube) {
       if (!(open_below > 0)) continue;
       // A point far off the axis of a much wider vessel (the skeleton between two branch origins
@@ -115,7 +115,7 @@ RefinedBranch refine_branch(const std::vector<Eigen::Vector3d>& chain, bool free
   const double open_below = free_start || free_end ? 0.0 : 0.5 * length;
   for (int pass = 0; pass < passes + 1; ++pass) {
     std::vector<Eigen::Vector3d> centred;
-    r = tube_radii(p, wall, o.rays, &centred, nullptr, open_below);
+    r = tube_radii(p, wall, o.rays, &centred, nullptr, open_below, o.wall_noise);
     for (size_t i = 1; i + 1 < p.size(); ++i) p[i] = centred[i];
     if (free_start) p.front() = centred.front();
     if (free_end) p.back() = centred.back();
@@ -123,7 +123,7 @@ RefinedBranch refine_branch(const std::vector<Eigen::Vector3d>& chain, bool free
   }
   extend_free_ends();
   p = resample_polyline(taubin_smooth_polyline(p, o.smoothing_iterations), o.spacing);
-  r = tube_radii(p, wall, o.rays, nullptr, &out.elongation);
+  r = tube_radii(p, wall, o.rays, nullptr, &out.elongation, 0.0, o.wall_noise);
   // Fill non-tube sections (bifurcations, caps) by interpolating along the branch
   // between tube sections; a branch with no tube section keeps the wall distance.
   std::vector<double> s(p.size(), 0.0);

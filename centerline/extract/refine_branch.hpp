@@ -12,6 +12,7 @@ struct BranchRefinement {
   int recentre_passes = 2;       // cross-section re-centring passes
   int smoothing_iterations = 4;  // Laplacian passes after re-centring
   int rays = 24;                 // rays per cross-section
+  double wall_noise = 0.0;       // the wall's roughness (estimate_wall_noise.hpp): 0 = smooth
 };
 
 struct RefinedBranch {

@@ -134,20 +134,17 @@ def test_arch_truths_are_the_generators(tmp_path):
                (REPO / f"anatomies/segmentation/arch_type{k}.truth.json").read_bytes()
 
 
-# The accuracy bar (mean <= 5% of the radius, bifurcations within 0.5 radius) is not met on
-# these coarse voxels except where listed as passing. Measured at this commit (voxels 0.4 / 0.6 mm,
+# The accuracy bar (mean <= 5% of the radius, bifurcations within 0.5 radius) is met on these
+# coarse voxels except where listed here. Measured at this commit (voxels 0.4 / 0.6 mm,
 # results/segmentation/README.md); strict: a case that starts meeting the bar fails here until it is
-# moved out of this table. The misses are the pl tree's shallow (25-40 degree) forks, whose junction
-# lands in the merged lumen distal of the true one, means just above the bar, and the merged
-# arch-III junction; the tree itself is right on all but that one
-# (test_segmentation_mesh_gives_the_right_tree).
+# moved out of this table. The misses are aortic arches at 0.6 mm: a mean above the bar, and the
+# merged arch-III junction; the tree itself is right on all but that one
+# (test_segmentation_mesh_gives_the_right_tree). The coronary-sized trees meet the bar since the
+# section tests allow for the wall's roughness (centerline/extract/estimate_wall_noise.hpp).
 ACCURACY_MISSES = {
-    "rca_plain": "mean 0.052 r (bifurcations within 0.38 r)",
-    "pl_nonmanifold": "mean 0.060 r, a bifurcation 2.91 r off (shallow forks)",
-    "pl_open_flipped_m": "mean 0.077 r, a bifurcation 2.59 r off (shallow forks)",
-    "arch2_open_nonmanifold": "mean 0.087 r (bifurcations within 0.35 r)",
-    "arch3_nonmanifold_m": "2 of 3 bifurcations (two origins merged), mean 0.121 r",
-    "arch3_open_flipped": "2 of 3 bifurcations (two origins merged), mean 0.136 r",
+    "arch2_open_nonmanifold": "mean 0.066 r (bifurcations within 0.29 r)",
+    "arch3_nonmanifold_m": "2 of 3 bifurcations (two origins merged), mean 0.089 r",
+    "arch3_open_flipped": "2 of 3 bifurcations (two origins merged), mean 0.088 r",
 }
 # The Type III arch's left common carotid and left subclavian origins (26 mm apart on a 12 mm aorta)
 # come out as one junction with three exits: right targets, one bifurcation short.

@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 
 APT_PACKAGES=(build-essential cmake ninja-build pkg-config python3 python3-venv python3-pip
   libeigen3-dev libfcl-dev libassimp-dev libsuitesparse-dev libcgal-dev
-  nlohmann-json3-dev catch2 libcli11-dev libpugixml-dev zlib1g-dev)
+  nlohmann-json3-dev catch2 libcli11-dev libpugixml-dev zlib1g-dev libpng-dev)
 
 missing=()
 for p in "${APT_PACKAGES[@]}"; do

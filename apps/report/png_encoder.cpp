@@ -1,55 +1,71 @@
 #include "apps/report/png_encoder.hpp"
 
+#include <png.h>
+
+#include <csetjmp>
 #include <stdexcept>
 
 #include "apps/report/atomic_write.hpp"
-#include "apps/report/checksums.hpp"
 
 namespace gw {
 namespace {
 
-void put32(std::vector<std::uint8_t>& out, std::uint32_t v) {
-  for (int s = 24; s >= 0; s -= 8) out.push_back(static_cast<std::uint8_t>(v >> s));
+struct WriteState {
+  std::vector<std::uint8_t>* out;
+  std::string error;
+};
+
+void append_bytes(png_structp png, png_bytep data, png_size_t n) {
+  auto* state = static_cast<WriteState*>(png_get_io_ptr(png));
+  state->out->insert(state->out->end(), data, data + n);
 }
 
-// length, type, data, CRC over type + data (PNG spec 5.3).
-void chunk(std::vector<std::uint8_t>& out, const char type[4], const std::vector<std::uint8_t>& data) {
-  put32(out, static_cast<std::uint32_t>(data.size()));
-  const std::size_t start = out.size();
-  out.insert(out.end(), type, type + 4);
-  out.insert(out.end(), data.begin(), data.end());
-  put32(out, crc32(out.data() + start, out.size() - start));
+void flush_nothing(png_structp) {}
+
+// libpng reports errors through longjmp: keep the message, then jump back to encode_png.
+[[noreturn]] void on_error(png_structp png, png_const_charp message) {
+  auto* state = static_cast<WriteState*>(png_get_error_ptr(png));
+  state->error = message ? message : "unknown error";
+  png_longjmp(png, 1);
 }
+
+void on_warning(png_structp, png_const_charp) {}
 
 }  // namespace
 
-std::vector<std::uint8_t> encode_png(const Image& img, DeflateMode mode) {
+std::vector<std::uint8_t> encode_png(const Image& img) {
   if (img.width <= 0 || img.height <= 0 ||
       img.rgb.size() != static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height) * 3)
     throw std::invalid_argument("encode_png: image " + std::to_string(img.width) + "x" + std::to_string(img.height) +
                                 " has " + std::to_string(img.rgb.size()) + " bytes of pixels");
-  std::vector<std::uint8_t> out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
-  std::vector<std::uint8_t> ihdr;
-  put32(ihdr, static_cast<std::uint32_t>(img.width));
-  put32(ihdr, static_cast<std::uint32_t>(img.height));
-  ihdr.insert(ihdr.end(), {8, 2, 0, 0, 0});  // bit depth 8, colour type 2 (RGB), deflate, filter set 0, no interlace
-  chunk(out, "IHDR", ihdr);
-
-  const std::size_t stride = static_cast<std::size_t>(img.width) * 3;
-  std::vector<std::uint8_t> raw;
-  raw.reserve((stride + 1) * static_cast<std::size_t>(img.height));
-  for (int y = 0; y < img.height; ++y) {
-    raw.push_back(0);  // filter type None: LZ77 already finds the repeats of flat figures
-    const auto row = img.rgb.begin() + static_cast<std::ptrdiff_t>(stride * static_cast<std::size_t>(y));
-    raw.insert(raw.end(), row, row + static_cast<std::ptrdiff_t>(stride));
+  std::vector<std::uint8_t> out;
+  WriteState state{&out, {}};
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, on_error, on_warning);
+  if (!png) throw std::runtime_error("encode_png: libpng cannot start (out of memory)");
+  png_infop info = png_create_info_struct(png);
+  if (!info) {
+    png_destroy_write_struct(&png, nullptr);
+    throw std::runtime_error("encode_png: libpng cannot start (out of memory)");
   }
-  chunk(out, "IDAT", zlib_compress(raw.data(), raw.size(), mode));
-  chunk(out, "IEND", {});
+  std::vector<png_const_bytep> rows(static_cast<std::size_t>(img.height));
+  for (int y = 0; y < img.height; ++y) rows[static_cast<std::size_t>(y)] = img.rgb.data() + img.index(0, y);
+  // Nothing with a destructor may be created between setjmp and the end of libpng's calls.
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    throw std::runtime_error("encode_png: libpng: " + state.error);
+  }
+  png_set_write_fn(png, &state, append_bytes, flush_nothing);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(img.width), static_cast<png_uint_32>(img.height), 8,
+               PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  png_write_image(png, const_cast<png_bytepp>(rows.data()));
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
   return out;
 }
 
-void write_png(const Image& img, const std::string& path, DeflateMode mode) {
-  const std::vector<std::uint8_t> bytes = encode_png(img, mode);
+void write_png(const Image& img, const std::string& path) {
+  const std::vector<std::uint8_t> bytes = encode_png(img);
   write_file_atomic(path, std::string(bytes.begin(), bytes.end()));
 }
 

@@ -144,7 +144,7 @@ int main(int argc, char** argv) {
       if (show_progress) std::fprintf(stderr, "\r[navigate] episode %d/%d", done, total);
     };
     gw::TraceOptions trace;
-    trace.wire_shape_every = out_dir.empty() ? 0 : 25;
+    trace.wire_shape_every = out_dir.empty() ? 0 : gw::wire_shape_stride(anatomy.scene.get(), config.dt_s * config.frame_skip);
     const std::vector<gw::EpisodeTrace> traces = gw::run_batch(task, requests, make_controller, threads, trace, progress);
     if (show_progress) std::fprintf(stderr, "\n");
 
@@ -176,7 +176,7 @@ int main(int argc, char** argv) {
                                                      : summary["controller"].get<std::string>();
       if (requests.size() > 1) line += " | seeds from " + std::to_string(seed);
       const std::vector<std::string> title = {line};
-      summary["files"] = gw::write_navigation_outputs(out_dir, nav, traces, title);
+      summary["files"] = gw::write_navigation_outputs(out_dir, nav, traces, title, anatomy.scene.get());
     }
 
     if (json) {

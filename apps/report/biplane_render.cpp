@@ -139,8 +139,8 @@ struct PanelInput {
   double t_max;
 };
 
-void draw_vessel(Image& panel, const ViewProjection& view, const TriangleMesh& mesh) {
-  if (mesh.F.rows() == 0) return;
+// How many projected triangles cover each pixel of the panel.
+CoverageRaster coverage(const Image& panel, const ViewProjection& view, const TriangleMesh& mesh) {
   std::vector<Eigen::Vector2d> px(static_cast<std::size_t>(mesh.V.rows()));
   for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) px[static_cast<std::size_t>(v)] = view.to_pixel(mesh.V.row(v).transpose());
   CoverageRaster cov(panel.width, panel.height);
@@ -150,6 +150,27 @@ void draw_vessel(Image& panel, const ViewProjection& view, const TriangleMesh& m
     if (a < 0 || b < 0 || c < 0 || a >= nv || b >= nv || c >= nv) continue;  // validate_mesh reports these
     cov.add_triangle(px[static_cast<std::size_t>(a)], px[static_cast<std::size_t>(b)], px[static_cast<std::size_t>(c)]);
   }
+  return cov;
+}
+
+// The silhouette's boundary, 2 px wide (the last covered and the first uncovered pixel).
+void draw_outline(Image& panel, const ViewProjection& view, const TriangleMesh& mesh, Rgb color) {
+  if (mesh.F.rows() == 0) return;
+  const CoverageRaster cov = coverage(panel, view, mesh);
+  auto covered = [&](int x, int y) {
+    return x >= 0 && y >= 0 && x < panel.width && y < panel.height && cov.at(x, y) > 0;
+  };
+  for (int y = 0; y < panel.height; ++y)
+    for (int x = 0; x < panel.width; ++x) {
+      const bool in = covered(x, y);
+      if (in != covered(x - 1, y) || in != covered(x + 1, y) || in != covered(x, y - 1) || in != covered(x, y + 1))
+        panel.set(x, y, color);
+    }
+}
+
+void draw_vessel(Image& panel, const ViewProjection& view, const TriangleMesh& mesh) {
+  if (mesh.F.rows() == 0) return;
+  const CoverageRaster cov = coverage(panel, view, mesh);
   for (int y = 0; y < panel.height; ++y)
     for (int x = 0; x < panel.width; ++x) {
       const int n = cov.at(x, y);
@@ -222,6 +243,7 @@ void draw_traces(Image& panel, const ViewProjection& view, const PanelInput& in)
 
 void draw_panel(Image& panel, const ViewProjection& view, const PanelInput& in) {
   draw_vessel(panel, view, in.mesh);
+  for (const WallOutline& o : in.options.wall_outlines) draw_outline(panel, view, o.mesh, o.color);
   draw_polyline(panel, project(view, in.path), 3.0, pal::kPath);
 
   if (in.options.draw_other_targets)
@@ -281,9 +303,11 @@ void draw_panel(Image& panel, const ViewProjection& view, const PanelInput& in) 
 void draw_legend(Image& img, int y0, const BiplaneOptions& options, double t_max, Rgb tip_color, bool batch) {
   enum Kind { Box, Line, Square, Ring, Dot, Tip, Ramp };
   struct Item { Kind kind; Rgb color; std::string label; };
-  std::vector<Item> items = {{Box, pal::kVesselFill, "vessel"}, {Line, pal::kPath, "path"},
+  std::vector<Item> items = {{Box, pal::kVesselFill, options.vessel_label}};
+  for (const WallOutline& o : options.wall_outlines) items.push_back({Line, o.color, o.label});
+  items.insert(items.end(), {{Line, pal::kPath, "path"},
                              {Square, pal::kInlet, "inlet"},    {Ring, pal::kTarget, "target"},
-                             {Dot, pal::kBifurcation, "bifurcation"}};
+                             {Dot, pal::kBifurcation, "bifurcation"}});
   if (options.coloring == TraceColoring::AgentControl) {
     items.push_back({Line, pal::kTipPush, "tip: push"});
     items.push_back({Line, pal::kTipAgent, "tip: agent"});
@@ -347,6 +371,8 @@ BiplaneRender render_biplane(const TriangleMesh& mesh, const CenterlineGraph& gr
   std::vector<Eigen::Vector3d> scene;
   scene.reserve(static_cast<std::size_t>(mesh.V.rows()) + path_points.size() + 16);
   for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) scene.push_back(mesh.V.row(v).transpose());
+  for (const WallOutline& o : options.wall_outlines)
+    for (Eigen::Index v = 0; v < o.mesh.V.rows(); ++v) scene.push_back(o.mesh.V.row(v).transpose());
   scene.insert(scene.end(), path_points.begin(), path_points.end());
   scene.push_back(graph.inlet.position);
   scene.push_back(target.position);

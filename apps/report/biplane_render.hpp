@@ -30,6 +30,14 @@ enum class TraceColoring {
   Time,          // violet (start) -> yellow (end), common time scale over all traces
 };
 
+// Another shape of the vessel wall drawn as an outline over the grey silhouette (e.g. a beating
+// wall at end-systole over the end-diastolic one), listed in the legend under `label`.
+struct WallOutline {
+  TriangleMesh mesh;
+  Rgb color{220, 60, 0};
+  std::string label;
+};
+
 struct BiplaneOptions {
   int width = 1400, height = 700;  // pixels; at least 320 x 240
   BiplaneAxes axes = BiplaneAxes::Principal;
@@ -37,6 +45,8 @@ struct BiplaneOptions {
   bool draw_final_wire = true;
   bool label_bifurcations = true;
   bool draw_other_targets = true;
+  std::string vessel_label = "vessel";     // the grey silhouette's name in the legend
+  std::vector<WallOutline> wall_outlines;  // drawn over the silhouette, under everything else
 };
 
 // The image and where each view landed in it (panel rectangles, world -> pixel).

@@ -1,6 +1,8 @@
 #include "apps/report/vtp_writer.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 
 #include "apps/report/atomic_write.hpp"
@@ -80,26 +82,67 @@ void write_trace_vtp(const EpisodeTrace& t, const std::string& path) {
   write_piece(piece, path);
 }
 
-void write_wire_shapes_vtp(const EpisodeTrace& t, const std::string& path) {
+void write_wire_shape_vtp(const EpisodeTrace& t, std::size_t shape, const std::string& path) {
   check_trace(t, path);
-  if (t.wire_shapes.empty()) throw std::invalid_argument(path + ": the trace has no wire shape to write");
+  if (shape >= t.wire_shapes.size())
+    throw std::invalid_argument(path + ": wire shape " + std::to_string(shape) + " of " +
+                                std::to_string(t.wire_shapes.size()));
+  const int f = t.wire_shape_frame.empty() ? -1 : t.wire_shape_frame[shape];
   VtpPiece piece;
-  VtpArray index{"shape", "Int32", 1, {}}, frame{"frame", "Int32", 1, {}}, time{"time_s", "Float64", 1, {}};
-  for (std::size_t s = 0; s < t.wire_shapes.size(); ++s) {
-    std::vector<int> cell;
-    for (const auto& p : t.wire_shapes[s]) {
-      if (!finite(p)) continue;
-      cell.push_back(static_cast<int>(piece.points.size()));
-      piece.points.push_back(p);
-    }
-    piece.lines.push_back(cell);
-    const int f = t.wire_shape_frame.empty() ? -1 : t.wire_shape_frame[s];
-    index.values.push_back(static_cast<double>(s));
-    frame.values.push_back(f);
-    time.values.push_back(f >= 0 ? finite_or_zero(t.time_s[static_cast<std::size_t>(f)]) : -1.0);
+  std::vector<Eigen::Vector3d> tip;
+  for (int i = 0; i <= f; ++i)
+    if (finite(t.tip[static_cast<std::size_t>(i)])) tip.push_back(t.tip[static_cast<std::size_t>(i)]);
+  std::vector<Eigen::Vector3d> wire;
+  for (const auto& p : t.wire_shapes[shape])
+    if (finite(p)) wire.push_back(p);
+  VtpArray arc{"arc_length_mm", "Float64", 1, {}};
+  for (const auto* line : {&tip, &wire}) {
+    piece.lines.push_back(append_polyline(piece, *line));
+    for (std::size_t i = 0; i < line->size(); ++i)
+      arc.values.push_back(i == 0 ? 0.0 : arc.values.back() + ((*line)[i] - (*line)[i - 1]).norm());
   }
-  piece.cell_data = {index, frame, time};
+  const double time = f >= 0 ? finite_or_zero(t.time_s[static_cast<std::size_t>(f)]) : -1.0;
+  piece.point_data = {arc};
+  piece.cell_data = {{"kind", "Int32", 1, {0.0, 1.0}},
+                     {"frame", "Int32", 1, {static_cast<double>(f), static_cast<double>(f)}},
+                     {"time_s", "Float64", 1, {time, time}}};
   write_piece(piece, path);
+}
+
+std::vector<std::string> write_episode_series(const EpisodeTrace& t, const std::string& pvd_path,
+                                              const std::string& folder, const SeriesWall& wall) {
+  check_trace(t, pvd_path);
+  if (t.wire_shapes.empty()) throw std::invalid_argument(pvd_path + ": the trace has no wire shape to write");
+  const std::string dir = std::filesystem::path(pvd_path).parent_path().string();
+  auto in_dir = [&](const std::string& relative) {
+    return dir.empty() ? relative : (std::filesystem::path(dir) / relative).string();
+  };
+  std::vector<std::string> written;
+  std::vector<PvdEntry> entries;
+  for (std::size_t s = 0; s < t.wire_shapes.size(); ++s) {
+    const int f = t.wire_shape_frame.empty() ? -1 : t.wire_shape_frame[s];
+    const double time = f >= 0 ? finite_or_zero(t.time_s[static_cast<std::size_t>(f)]) : static_cast<double>(s);
+    char tag[32];
+    std::snprintf(tag, sizeof tag, "%05d", f >= 0 ? f : static_cast<int>(s));
+    const std::string wire_file = folder + "/wire_" + tag + ".vtp";
+    write_wire_shape_vtp(t, s, in_dir(wire_file));
+    written.push_back(in_dir(wire_file));
+    entries.push_back({time, 0, wire_file});
+    if (wall.file_at) {
+      entries.push_back({time, 1, wall.file_at(time)});
+    } else if (!wall.static_file.empty()) {
+      entries.push_back({time, 1, wall.static_file});
+    }
+  }
+  std::string xml;
+  try {
+    xml = pvd_to_xml(entries);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(pvd_path + ": " + e.what());
+  }
+  write_file_atomic(pvd_path, xml);
+  written.push_back(pvd_path);
+  return written;
 }
 
 void write_mesh_vtp(const TriangleMesh& mesh, const std::string& path) {

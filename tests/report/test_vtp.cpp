@@ -1,14 +1,20 @@
-// VTK XML PolyData files: well-formed XML, counts in the Piece header matching the data
-// arrays, indices in range, the documented arrays present.
+// VTK XML PolyData files (zlib-compressed appended binary): well-formed XML, counts in the Piece
+// header matching the data arrays, indices in range, the documented arrays present; the project's
+// own .vtp reader (centerline/graph/vtp_polylines) reads them back; .pvd time series.
+#include <zlib.h>
+
 #include <catch2/catch.hpp>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
+#include <pugixml.hpp>
 #include <sstream>
 
 #include "apps/report/atomic_write.hpp"
 #include "apps/report/vtp_writer.hpp"
+#include "centerline/graph/vtp_polylines.hpp"
 #include "report_scenes.hpp"
 
 using namespace gw;
@@ -34,55 +40,88 @@ struct Vtp {
   }
 };
 
-std::map<std::string, std::string> attributes(const std::string& tag) {
-  std::map<std::string, std::string> out;
-  std::size_t at = 0;
-  while ((at = tag.find('=', at)) != std::string::npos) {
-    std::size_t k = tag.rfind(' ', at);
-    const std::string key = tag.substr(k + 1, at - k - 1);
-    const std::size_t q0 = tag.find('"', at), q1 = tag.find('"', q0 + 1);
-    out[key] = tag.substr(q0 + 1, q1 - q0 - 1);
-    at = q1 + 1;
+std::uint64_t le64(const std::string& d, std::size_t at) {
+  if (at + 8 > d.size()) throw std::runtime_error("appended data ends inside a header");
+  std::uint64_t v = 0;
+  for (int k = 7; k >= 0; --k) v = (v << 8) | static_cast<unsigned char>(d[at + static_cast<std::size_t>(k)]);
+  return v;
+}
+
+// One appended array: vtkZLibDataCompressor's UInt64 header [blocks, block size, last block size,
+// compressed sizes], then the zlib blocks; inflated with zlib and checked against the header.
+std::string inflate_array(const std::string& appended, std::size_t offset) {
+  const std::uint64_t blocks = le64(appended, offset), block = le64(appended, offset + 8),
+                      last = le64(appended, offset + 16);
+  std::size_t at = offset + 24 + 8 * blocks;
+  std::string out;
+  for (std::uint64_t b = 0; b < blocks; ++b) {
+    const std::uint64_t packed = le64(appended, offset + 24 + 8 * b);
+    const std::uint64_t expected = (b + 1 == blocks && last != 0) ? last : block;
+    if (at + packed > appended.size()) throw std::runtime_error("appended data truncated");
+    std::string raw(expected, '\0');
+    uLongf n = static_cast<uLongf>(expected);
+    if (uncompress(reinterpret_cast<Bytef*>(raw.data()), &n, reinterpret_cast<const Bytef*>(appended.data() + at),
+                   static_cast<uLong>(packed)) != Z_OK || n != expected)
+      throw std::runtime_error("zlib block does not inflate to its size");
+    out += raw;
+    at += packed;
   }
   return out;
 }
 
-// A small XML reader for our files: checks every element is closed in order and collects
-// DataArrays with the section they belong to.
-Vtp parse_vtp(const std::string& path) {
-  std::ifstream in(path);
-  const std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (xml.rfind("<?xml", 0) != 0) throw std::runtime_error("no XML declaration");
-  Vtp vtp;
-  std::vector<std::string> stack;
-  std::size_t at = xml.find("?>") + 2;
-  DataArray* open_array = nullptr;
-  while ((at = xml.find('<', at)) != std::string::npos) {
-    const std::size_t end = xml.find('>', at);
-    if (end == std::string::npos) throw std::runtime_error("unterminated tag");
-    const std::string tag = xml.substr(at + 1, end - at - 1);
-    if (tag[0] == '/') {
-      const std::string name = tag.substr(1);
-      if (stack.empty() || stack.back() != name) throw std::runtime_error("mismatched </" + name + ">");
-      stack.pop_back();
-      open_array = nullptr;
-    } else {
-      const std::string name = tag.substr(0, tag.find(' '));
-      const bool self_closing = tag.back() == '/';
-      if (name == "Piece") vtp.piece = attributes(tag);
-      if (name == "DataArray") {
-        vtp.arrays.push_back({stack.back(), attributes(tag), {}});
-        open_array = &vtp.arrays.back();
-        std::istringstream text(xml.substr(end + 1, xml.find('<', end) - end - 1));
-        double v;
-        while (text >> v) open_array->values.push_back(v);
-        if (!text.eof()) throw std::runtime_error("unparsable number in DataArray");
-      }
-      if (!self_closing) stack.push_back(name);
+std::vector<double> decode_values(const std::string& bytes, const std::string& type) {
+  std::vector<double> out;
+  if (type == "Float64") {
+    for (std::size_t i = 0; i + 8 <= bytes.size(); i += 8) {
+      double v;
+      std::memcpy(&v, bytes.data() + i, 8);
+      out.push_back(v);
     }
-    at = end + 1;
+  } else if (type == "Int32") {
+    for (std::size_t i = 0; i + 4 <= bytes.size(); i += 4) {
+      std::int32_t v;
+      std::memcpy(&v, bytes.data() + i, 4);
+      out.push_back(v);
+    }
+  } else {
+    throw std::runtime_error("unexpected type " + type);
   }
-  if (!stack.empty()) throw std::runtime_error("unclosed <" + stack.back() + ">");
+  return out;
+}
+
+// A small reader for our files (XML by pugixml, appended raw data inflated by zlib): checks the
+// header attributes the format needs and collects the DataArrays with the section they belong to.
+Vtp parse_vtp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (file.rfind("<?xml", 0) != 0) throw std::runtime_error("no XML declaration");
+  const std::size_t tag = file.find("<AppendedData encoding=\"raw\">");
+  if (tag == std::string::npos) throw std::runtime_error("no raw <AppendedData>");
+  const std::size_t underscore = file.find('_', tag);
+  const std::size_t close = file.rfind("</AppendedData>");
+  if (underscore == std::string::npos || close == std::string::npos || close < underscore)
+    throw std::runtime_error("malformed <AppendedData>");
+  const std::string appended = file.substr(underscore + 1, close - underscore - 1);
+  const std::string header = file.substr(0, tag) + "</VTKFile>";
+  pugi::xml_document xml;
+  if (!xml.load_string(header.c_str())) throw std::runtime_error("XML header does not parse");
+  const pugi::xml_node root = xml.child("VTKFile");
+  if (std::string(root.attribute("type").value()) != "PolyData" ||
+      std::string(root.attribute("byte_order").value()) != "LittleEndian" ||
+      std::string(root.attribute("header_type").value()) != "UInt64" ||
+      std::string(root.attribute("compressor").value()) != "vtkZLibDataCompressor")
+    throw std::runtime_error("unexpected VTKFile attributes");
+  Vtp vtp;
+  const pugi::xml_node piece = root.child("PolyData").child("Piece");
+  for (const pugi::xml_attribute a : piece.attributes()) vtp.piece[a.name()] = a.value();
+  for (const pugi::xml_node section : piece.children())
+    for (const pugi::xml_node a : section.children("DataArray")) {
+      DataArray d{section.name(), {}, {}};
+      for (const pugi::xml_attribute at : a.attributes()) d.attr[at.name()] = at.value();
+      if (d.attr["format"] != "appended") throw std::runtime_error("an array is not appended");
+      d.values = decode_values(inflate_array(appended, std::stoul(d.attr.at("offset"))), d.attr.at("type"));
+      vtp.arrays.push_back(std::move(d));
+    }
   return vtp;
 }
 
@@ -153,20 +192,104 @@ TEST_CASE("trace VTP: tip polyline with point data and the final wire as a secon
   CHECK(frame[static_cast<std::size_t>(frames)] == 38);  // wire points carry the shape's frame
 }
 
-TEST_CASE("wire-shape VTP: one polyline per recorded shape with its frame and time", "[report][vtp]") {
+TEST_CASE("episode series: a .pvd listing one wire file per recorded shape, with the wall", "[report][vtp]") {
   const test::TreeScene s = test::small_tree();
   const EpisodeTrace t = test::episode_along(plan_path(s.graph, 1).points, s.graph, "success", "", 1);
-  const std::string dir = test::scratch_dir("vtp_shapes");
-  write_wire_shapes_vtp(t, dir + "/shapes.vtp");
-  const Vtp v = parse_vtp(dir + "/shapes.vtp");
-  CHECK(v.number("NumberOfLines") == static_cast<long>(t.wire_shapes.size()));
-  check_consistent(v);
-  const auto& frame = v.array("CellData", "frame").values;
-  for (std::size_t i = 0; i < frame.size(); ++i) CHECK(frame[i] == t.wire_shape_frame[i]);
+  REQUIRE(t.wire_shapes.size() >= 2);
+  const std::string dir = test::scratch_dir("vtp_series");
+  fs::create_directories(dir + "/ep");
+  // A moving wall: the mesh shifted by t mm in x at time t, written by the caller's callback.
+  SeriesWall wall;
+  int walls_written = 0;
+  wall.file_at = [&](double time) {
+    TriangleMesh m = s.mesh;
+    m.V.col(0).array() += time;
+    const std::string name = "ep/vessel_" + std::to_string(walls_written++) + ".vtp";
+    write_mesh_vtp(m, dir + "/" + name);
+    return name;
+  };
+  const auto written = write_episode_series(t, dir + "/ep.pvd", "ep", wall);
+  REQUIRE(written.size() == t.wire_shapes.size() + 1);
+  CHECK(walls_written == static_cast<int>(t.wire_shapes.size()));
+  CHECK(written.back() == dir + "/ep.pvd");
+  std::ifstream in(dir + "/ep.pvd");
+  const std::string pvd((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  pugi::xml_document xml;
+  REQUIRE(xml.load_string(pvd.c_str()));
+  const pugi::xml_node root = xml.child("VTKFile");
+  CHECK(std::string(root.attribute("type").value()) == "Collection");
+  std::vector<pugi::xml_node> sets;
+  for (const pugi::xml_node d : root.child("Collection").children("DataSet")) sets.push_back(d);
+  REQUIRE(sets.size() == 2 * t.wire_shapes.size());
+  for (std::size_t k = 0; k < t.wire_shapes.size(); ++k) {
+    const int f = t.wire_shape_frame[k];
+    const double time = t.time_s[static_cast<std::size_t>(f)];
+    const pugi::xml_node w = sets[2 * k], m = sets[2 * k + 1];
+    CAPTURE(k, f);
+    CHECK(w.attribute("timestep").as_double() == time);
+    CHECK(m.attribute("timestep").as_double() == time);
+    CHECK(w.attribute("part").as_int() == 0);
+    CHECK(m.attribute("part").as_int() == 1);
+    const Vtp wv = parse_vtp(dir + "/" + w.attribute("file").value());
+    check_consistent(wv);
+    CHECK(wv.number("NumberOfLines") == 2);
+    CHECK(wv.array("CellData", "kind").values == std::vector<double>{0, 1});
+    CHECK(wv.array("CellData", "frame").values == std::vector<double>{static_cast<double>(f), static_cast<double>(f)});
+    // Tip trace up to the frame, then the wire shape.
+    CHECK(wv.number("NumberOfPoints") == static_cast<long>(f + 1 + static_cast<int>(t.wire_shapes[k].size())));
+    const auto& pts = wv.array("Points", "Points").values;
+    CHECK(pts[3 * static_cast<std::size_t>(f + 1)] == t.wire_shapes[k][0].x());
+    const Vtp mv = parse_vtp(dir + "/" + m.attribute("file").value());
+    CHECK(mv.number("NumberOfPolys") == s.mesh.F.rows());
+    CHECK(mv.array("Points", "Points").values[0] == Approx(s.mesh.V(0, 0) + time));
+  }
+  // A static wall is listed, not written, at every time.
+  SeriesWall fixed;
+  fixed.static_file = "vessel.vtp";
+  const auto still = write_episode_series(t, dir + "/still.pvd", "ep", fixed);
+  CHECK(still.size() == t.wire_shapes.size() + 1);
+  std::ifstream in2(dir + "/still.pvd");
+  const std::string pvd2((std::istreambuf_iterator<char>(in2)), std::istreambuf_iterator<char>());
+  CHECK(pvd2.find("part=\"1\" file=\"vessel.vtp\"") != std::string::npos);
+
   EpisodeTrace none = t;
   none.wire_shapes.clear();
   none.wire_shape_frame.clear();
-  CHECK_THROWS_WITH(write_wire_shapes_vtp(none, dir + "/none.vtp"), Contains("no wire shape"));
+  CHECK_THROWS_WITH(write_episode_series(none, dir + "/none.pvd", "ep"), Contains("no wire shape"));
+  CHECK_THROWS_WITH(write_wire_shape_vtp(t, t.wire_shapes.size(), dir + "/x.vtp"), Contains("wire shape"));
+}
+
+TEST_CASE("the project's own .vtp reader reads the binary files back", "[report][vtp]") {
+  const test::TreeScene s = test::small_tree();
+  const std::string path = test::scratch_dir("vtp_roundtrip") + "/centerline.vtp";
+  write_centerline_vtp(s.graph, path);
+  const VtpPolylines back = read_vtp_polylines(path, {"radius_mm"});
+  REQUIRE(back.lines.size() == s.graph.branches.size());
+  std::size_t k = 0;
+  for (std::size_t b = 0; b < s.graph.branches.size(); ++b) {
+    const auto& branch = s.graph.branches[b];
+    REQUIRE(back.lines[b].size() == branch.points.size());
+    for (std::size_t i = 0; i < branch.points.size(); ++i, ++k) {
+      CHECK(back.points[static_cast<std::size_t>(back.lines[b][i])] == branch.points[i]);  // bit for bit
+      CHECK(back.point_arrays.at("radius_mm")[k] == (i < branch.radii.size() ? branch.radii[i] : 0.0));
+    }
+  }
+}
+
+TEST_CASE("a large mesh spans several compressed blocks and reads back", "[report][vtp]") {
+  TriangleMesh m;
+  const int n = 3000;  // 3000 x 24 bytes of points: three 32 KiB blocks
+  m.V.resize(n, 3);
+  m.F.resize(n - 2, 3);
+  for (int i = 0; i < n; ++i) m.V.row(i) << std::cos(i * 0.01), std::sin(i * 0.013), i * 0.001;
+  for (int i = 0; i + 2 < n; ++i) m.F.row(i) << i, i + 1, i + 2;
+  const std::string path = test::scratch_dir("vtp_big") + "/big.vtp";
+  write_mesh_vtp(m, path);
+  const Vtp v = parse_vtp(path);
+  check_consistent(v);
+  const auto& pts = v.array("Points", "Points").values;
+  REQUIRE(pts.size() == 3u * n);
+  for (int i = 0; i < n; i += 97) CHECK(pts[3 * static_cast<std::size_t>(i) + 1] == m.V(i, 1));
 }
 
 TEST_CASE("polyline and centerline VTP carry arc length and radius", "[report][vtp]") {

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -16,6 +17,8 @@
 #include "apps/runner/rotation_schedules.hpp"
 #include "apps/runner/run_episode.hpp"
 #include "apps/runner/success_statistics.hpp"
+#include "engine/scene/moving_wall.hpp"
+#include "engine/scene/wall_motion.hpp"
 #include "engine/task/navigation_task.hpp"
 #include "engine/task/observation.hpp"
 #include "engine/wire/wire_params.hpp"
@@ -324,6 +327,62 @@ TEST_CASE("navigation outputs: trajectories, VTK and a biplane PNG per target", 
   char magic[4] = {};
   png.read(magic, 4);
   CHECK(std::string(magic + 1, 3) == "PNG");
+  // The ParaView time series: one wire file per recorded shape (frame 0 and the last), the static
+  // wall listed at each time, not written again.
+  const auto& shapes = traces.front().wire_shape_frame;
+  REQUIRE(shapes.size() >= 2);
+  CHECK(fs::exists(dir / "episode0_target1.pvd"));
+  for (int f : shapes) {
+    char name[32];
+    std::snprintf(name, sizeof name, "wire_%05d.vtp", f);
+    CHECK(fs::exists(dir / "episode0_target1" / name));
+  }
+  std::ifstream pvd(dir / "episode0_target1.pvd");
+  const std::string collection((std::istreambuf_iterator<char>(pvd)), std::istreambuf_iterator<char>());
+  CHECK(collection.find("part=\"1\" file=\"vessel.vtp\"") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "episode0_target1" / "vessel_00000.vtp"));
+}
+
+TEST_CASE("navigation outputs of a beating wall: its surface per recorded frame, ED and ES in the figure", "[runner]") {
+  const ShortT1 t1(12);
+  const auto traces = gw::run_batch(t1.task, gw::plan_episodes(t1.task, 0, "1", 1, 0),
+                                    [] { return gw::make_push_only_controller(); }, 1, {});
+  // A wall shaken along x: D(t) = A sin(2 pi t) at 60 bpm, so end-systole (phase 1/3) is at t = 1/3 s.
+  const gw::VesselScene& rest = *t1.nav.anatomy.scene;
+  const Eigen::Vector3d amplitude(1.0, 0.0, 0.0);
+  const gw::VesselScene beating =
+      gw::attach_wall_motion(rest, gw::rigid_wall_motion(rest.mesh, Eigen::Vector3d::Zero(), amplitude, 60.0));
+  REQUIRE(beating.motion);
+  CHECK(gw::wall_time_at_phase(beating, 0.0) == 0.0);
+  CHECK(gw::wall_time_at_phase(beating, 1.0 / 3.0) == Approx(1.0 / 3.0));
+  const double t = 0.1;
+  const gw::TriangleMesh moved = gw::wall_mesh_at(beating, t);
+  REQUIRE(moved.V.rows() == rest.mesh.V.rows());
+  CHECK((moved.V - rest.mesh.V).col(0).maxCoeff() == Approx(std::sin(2 * M_PI * t)).epsilon(1e-12));
+  CHECK((moved.V - rest.mesh.V).col(1).cwiseAbs().maxCoeff() == 0.0);
+  CHECK(moved.F == rest.mesh.F);
+
+  const fs::path dir = scratch_dir("outputs_beating");
+  const auto files = gw::write_navigation_outputs(dir.string(), t1.nav, traces, {"test"}, &beating);
+  const auto& shapes = traces.front().wire_shape_frame;
+  REQUIRE(shapes.size() >= 2);
+  for (int f : shapes) {
+    char wire[32];
+    std::snprintf(wire, sizeof wire, "wire_%05d.vtp", f);
+    CHECK(fs::exists(dir / "episode0_target1" / wire));
+  }
+  std::ifstream pvd(dir / "episode0_target1.pvd");
+  const std::string collection((std::istreambuf_iterator<char>(pvd)), std::istreambuf_iterator<char>());
+  // One wall file per distinct phase: phase 0 (t = 0) and the last frame's.
+  CHECK(collection.find("part=\"1\" file=\"wall/phase_000000000.vtp\"") != std::string::npos);
+  CHECK(fs::exists(dir / "wall" / "phase_000000000.vtp"));
+  const auto walls = std::distance(fs::directory_iterator(dir / "wall"), fs::directory_iterator{});
+  CHECK(walls == static_cast<long>(shapes.size()));  // 12 steps of 0.04 s at 60 bpm: every phase differs
+  CHECK(gw::wire_shape_stride(&beating, 0.04) == 3);
+  CHECK(gw::wire_shape_stride(&rest, 0.04) == 25);
+  CHECK(gw::wire_shape_stride(nullptr, 0.04) == 25);
+  CHECK(fs::exists(dir / "target1.png"));
+  CHECK(std::find(files.begin(), files.end(), (dir / "episode0_target1.pvd").string()) != files.end());
 }
 
 TEST_CASE("controllers: the scripted omega rule in both turn directions", "[runner]") {

@@ -282,3 +282,34 @@ TEST_CASE("biplane: one episode's wire is drawn over its trace, several episodes
       render_biplane(test::box_vessel(), graph, path, graph.targets[0], {test::box_trace(), on_wire}, {}, fixed_axes());
   CHECK(pixel(two, 0, probe) == pal::kTipAgent);
 }
+
+TEST_CASE("biplane: a wall outline (a beating wall at end-systole) is drawn at its own silhouette's edge", "[report][biplane]") {
+  const TriangleMesh mesh = test::box_vessel();
+  const CenterlineGraph graph = test::straight_graph();
+  const TargetPath path = plan_path(graph, 1);
+  BiplaneOptions o = fixed_axes();
+  TriangleMesh shifted = mesh;
+  shifted.V.col(0).array() += 6.0;  // the box moved 6 mm along +x: x in [4, 8]
+  const Rgb magenta{230, 0, 200};
+  o.wall_outlines.push_back({shifted, magenta, "wall, end-systole"});
+  o.vessel_label = "wall, end-diastole";
+  const BiplaneRender r = render_biplane(mesh, graph, path.points, graph.targets[0], {}, {}, o);
+  // Frontal view: walking right at y = 20 from the shifted box's middle, the outline is met at x = 8.
+  const Eigen::Vector2d from = r.views[0].to_pixel({6.0, 20.0, 0.0});
+  int x = static_cast<int>(std::floor(from.x()));
+  const int y = static_cast<int>(std::floor(from.y()));
+  CHECK(r.image.at(x, y) == pal::kBackground);  // the outline is not filled
+  while (x < r.image.width - 1 && r.image.at(x, y) != magenta) ++x;
+  CHECK(r.views[0].to_pixel({8.0, 20.0, 0.0}).x() == Approx(x + 0.5).margin(1.5));
+  // The framing takes the outline in: both boxes are in the frontal panel.
+  const Eigen::Vector2d right_edge = r.views[0].to_pixel({8.0, 20.0, 0.0});
+  CHECK(right_edge.x() < r.views[0].panel_origin.x() + r.views[0].panel_size.x());
+  // Inside the grey box the fill is untouched.
+  CHECK(pixel(r, 0, {1.0, 20.5, 0.0}) == pal::kVesselFill);
+  // Without outlines no pixel has the outline's colour.
+  const BiplaneRender plain = render_biplane(mesh, graph, path.points, graph.targets[0], {}, {}, fixed_axes());
+  bool any = false;
+  for (int yy = 0; yy < plain.image.height && !any; ++yy)
+    for (int xx = 0; xx < plain.image.width && !any; ++xx) any = plain.image.at(xx, yy) == magenta;
+  CHECK_FALSE(any);
+}

@@ -30,11 +30,16 @@ const double kMidpointMinLength = 1.0;  // mm
 
 // Re-gathers the candidates of one point around `p` within `radius`, sorted by distance lower bound.
 // A moving wall: its shape at time t (the bounds then hold at t).
-void refresh(const VesselScene& scene, const Eigen::Vector3d& p, double radius, WallCandidates& c, double t) {
+// `rest_frame`: a moving wall's list kept in the rest configuration, gathered around the pre-image p on
+// the rest mesh exactly as a static wall's (see cached_wall_distance).
+void refresh(const VesselScene& scene, const Eigen::Vector3d& p, double radius, WallCandidates& c, double t,
+             bool rest_frame = false) {
   c.centre = p;
   c.gathered = radius;
   c.closest = -1;
-  if (scene.motion) {
+  c.rest = rest_frame;
+  const bool moving = scene.motion && !rest_frame;  // lists on the current shape at t
+  if (moving) {
     thread_local std::vector<double> spheres;
     triangles_near_at(scene, t, p, radius, c.triangles, &spheres);
     c.wall_time = t;
@@ -45,7 +50,7 @@ void refresh(const VesselScene& scene, const Eigen::Vector3d& p, double radius, 
   }
   const std::size_t n = c.triangles.size();
   c.lower_bounds.resize(n);
-  for (std::size_t i = 0; i < n && !scene.motion; ++i) {
+  for (std::size_t i = 0; i < n && !moving; ++i) {
     const int f = c.triangles[i];
     const Eigen::Vector4d& sphere = scene.face_spheres[f];
     c.lower_bounds[i] = std::max(0.0, (p - sphere.head<3>()).norm() - sphere[3]);
@@ -59,9 +64,12 @@ void refresh(const VesselScene& scene, const Eigen::Vector3d& p, double radius, 
     c.lower_bounds[i] = order[i].first;
     c.triangles[i] = order[i].second;
   }
+  c.rest_spheres.clear();
+  if (rest_frame)  // scanned with the list, not through the scene's array (cache misses)
+    for (std::size_t i = 0; i < n; ++i) c.rest_spheres.push_back(scene.face_spheres[c.triangles[i]]);
   if (n == 0) {
     // No wall within `radius`: the point may move until it could be within reach of the wall.
-    c.clearance = scene.motion ? wall_distance_at(scene, t, p).signed_distance : wall_distance(scene, p).signed_distance;
+    c.clearance = moving ? wall_distance_at(scene, t, p).signed_distance : wall_distance(scene, p).signed_distance;
     c.gathered = std::max(radius, std::abs(c.clearance));
   }
 }
@@ -90,9 +98,52 @@ WallDistance cached_wall_distance(const WireModel& model, const VesselScene& sce
     far.signed_distance = deep;  // lower bound, > need
     return far;
   }
+  if (motion && motion->kind != WallMotionKind::phases) {
+    // Rigid and cardiac walls: the list lives in the REST configuration, around the point's pre-image X
+    // (wall_rest_point_at: Newton from the last one), gathered from the rest grid with rest bounding
+    // spheres, as a static wall's. Exactness: a current triangle point within `need` of p has its rest
+    // point within rest_reach(need) of X (wall_motion.hpp: the map's smallest stretch sigma, curvature K
+    // and the inversion residual), hence within rest_reach(need) + |X - centre| of the list's centre; the
+    // list holds every triangle whose rest bounding sphere comes that near while that sum stays below
+    // `gathered`. The heart's beat does not move X (a wall point keeps its rest point); only the wire's
+    // motion relative to the wall does, so a list is re-gathered about as often as on a static wall.
+    RestPoint rp;
+    const bool warm = c.rest && c.gathered >= 0;
+    if (wall_rest_point_at(scene, t, p, warm ? &c.rest_point : nullptr, rp)) {
+      const double reach = rest_reach(rp, need);
+      if (std::isfinite(reach)) {
+        c.rest_point = rp.X;
+        double moved = warm ? (rp.X - c.centre).norm() : 0;
+        if (!warm || reach + moved > c.gathered) {
+          const double radius = rest_reach(rp, need + model.params.contact_slack_mm);
+          refresh(scene, rp.X, std::isfinite(radius) ? radius : reach, c, t, true);
+          moved = 0;
+        }
+        if (c.triangles.empty()) {
+          // No triangle's rest sphere within `gathered` of the centre: X is on the centre's side of the
+          // rest wall (inside or outside, kept by the map) and nothing comes within `need` of p.
+          if (c.clearance < 0) return wall_distance_at(scene, t, p);  // outside: exact
+          WallDistance far;
+          far.signed_distance = std::max(need, current_reach(rp, c.gathered - moved));  // lower bound, >= need
+          c.bound_point = p;
+          c.bound = far.signed_distance;
+          c.bound_time = t;
+          return far;
+        }
+        WallDistance wd =
+            wall_distance_among_at(scene, t, p, c.triangles, cutoff, &c.lower_bounds, moved, &c.closest, &rp,
+                                   &c.rest_spheres);
+        if (wd.triangle < 0) wd.signed_distance = cutoff;  // nothing within the cutoff: well inside
+        c.bound_point = p;
+        c.bound = wd.signed_distance;
+        c.bound_time = t;
+        return wd;
+      }
+    }
+  }
   double moved = c.gathered >= 0 ? (p - c.centre).norm() : 0;
   if (motion && c.gathered >= 0) moved += wall_max_travel(*motion, c.wall_time, t);
-  if (c.gathered < 0 || c.gathered - moved < need) {
+  if (c.gathered < 0 || c.rest || c.gathered - moved < need) {
     refresh(scene, p, need + model.params.contact_slack_mm, c, t);
     moved = 0;
   }

@@ -13,10 +13,20 @@ namespace gw {
 
 namespace {
 
-// The current corners, unit normal and bounding sphere of face f (make_vessel_scene's formulas).
-struct Face {
-  Eigen::Vector3d a, b, c, n, centre;
+// The current corners, unit normal and bounding sphere of face f (make_vessel_scene's formulas), with
+// the time stamp it was computed for: two cache lines per face (the centre is recomputed by the same
+// formula, bit for bit), because a sub-step's queries touch faces scattered over the whole mesh and
+// their cost is mostly cache misses.
+struct alignas(64) Face {
+  Eigen::Vector3d a, b, c, n;
   double radius;
+  int stamp = 0;
+  Eigen::Vector3d centre() const { return (a + b + c) / 3.0; }
+};
+// A current vertex position and its stamp in one line; the vertex normal's stamp beside it.
+struct Vertex {
+  Eigen::Vector3d x;
+  int stamp = 0, normal_stamp = 0;
 };
 
 // Current vertex positions and vertex normals of one (motion, time), computed on first use. Per thread,
@@ -28,8 +38,8 @@ struct CurrentWallCache {
   int epoch = 0;
   long used = 0;
   WallTime at;
-  std::vector<int> stamp, normal_stamp, face_stamp;
-  std::vector<Eigen::Vector3d> x, n;
+  std::vector<Vertex> v;
+  std::vector<Eigen::Vector3d> n;
   std::vector<Face> faces;
 };
 
@@ -47,14 +57,11 @@ CurrentWallCache& cache_for(const VesselScene& s, double t) {
   for (CurrentWallCache& c : slots)
     if (c.used < oldest->used) oldest = &c;
   CurrentWallCache& c = *oldest;
-  if (static_cast<int>(c.stamp.size()) != m.vertices || c.face_stamp.size() != static_cast<std::size_t>(s.mesh.F.rows()) ||
+  if (static_cast<int>(c.v.size()) != m.vertices || c.faces.size() != static_cast<std::size_t>(s.mesh.F.rows()) ||
       c.epoch == std::numeric_limits<int>::max()) {
-    c.stamp.assign(m.vertices, 0);
-    c.normal_stamp.assign(m.vertices, 0);
-    c.x.resize(m.vertices);
+    c.v.assign(m.vertices, Vertex{});
     c.n.resize(m.vertices);
-    c.face_stamp.assign(s.mesh.F.rows(), 0);
-    c.faces.resize(s.mesh.F.rows());
+    c.faces.assign(s.mesh.F.rows(), Face{});
     c.epoch = 0;
   }
   ++c.epoch;
@@ -66,32 +73,33 @@ CurrentWallCache& cache_for(const VesselScene& s, double t) {
 }
 
 const Eigen::Vector3d& vertex(CurrentWallCache& c, const VesselScene& s, int i) {
-  if (c.stamp[i] != c.epoch) {
-    c.x[i] = wall_vertex_position(*s.motion, s.mesh, i, c.at);
-    c.stamp[i] = c.epoch;
+  Vertex& v = c.v[i];
+  if (v.stamp != c.epoch) {
+    v.x = wall_vertex_position(*s.motion, s.mesh, i, c.at);
+    v.stamp = c.epoch;
   }
-  return c.x[i];
+  return v.x;
 }
 
 
 const Face& face(CurrentWallCache& cache, const VesselScene& s, int f) {
-  if (cache.face_stamp[f] == cache.epoch) return cache.faces[f];
-  cache.face_stamp[f] = cache.epoch;
   Face& r = cache.faces[f];
+  if (r.stamp == cache.epoch) return r;
+  r.stamp = cache.epoch;
   r.a = vertex(cache, s, s.mesh.F(f, 0));
   r.b = vertex(cache, s, s.mesh.F(f, 1));
   r.c = vertex(cache, s, s.mesh.F(f, 2));
   const Eigen::Vector3d n = (r.b - r.a).cross(r.c - r.a);
   const double len = n.norm();
   r.n = len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
-  r.centre = (r.a + r.b + r.c) / 3.0;
-  r.radius = std::max({(r.a - r.centre).norm(), (r.b - r.centre).norm(), (r.c - r.centre).norm()});
+  const Eigen::Vector3d centre = r.centre();
+  r.radius = std::max({(r.a - centre).norm(), (r.b - centre).norm(), (r.c - centre).norm()});
   return r;
 }
 
 // Angle-weighted vertex normal of the current shape (as make_vessel_scene computes it).
 const Eigen::Vector3d& vertex_normal(CurrentWallCache& c, const VesselScene& s, int i) {
-  if (c.normal_stamp[i] == c.epoch) return c.n[i];
+  if (c.v[i].normal_stamp == c.epoch) return c.n[i];
   const WallMotion& m = *s.motion;
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (int k = m.vertex_face_begin[i]; k < m.vertex_face_begin[i + 1]; ++k) {
@@ -107,7 +115,7 @@ const Eigen::Vector3d& vertex_normal(CurrentWallCache& c, const VesselScene& s, 
   const double len = sum.norm();
   if (len > 0) sum /= len;
   c.n[i] = sum;
-  c.normal_stamp[i] = c.epoch;
+  c.v[i].normal_stamp = c.epoch;
   return c.n[i];
 }
 
@@ -119,7 +127,8 @@ Eigen::Vector3d current_wall_vertex(const VesselScene& scene, int vertex_index, 
 
 WallDistance wall_distance_among_at(const VesselScene& scene, double t, const Eigen::Vector3d& p,
                                     const std::vector<int>& triangles, double cutoff,
-                                    const std::vector<double>* lower_bounds, double moved, int* hint) {
+                                    const std::vector<double>* lower_bounds, double moved, int* hint,
+                                    const RestPoint* rest, const std::vector<Eigen::Vector4d>* rest_spheres) {
   CurrentWallCache& cache = cache_for(scene, t);
   WallDistance best;
   best.signed_distance = std::numeric_limits<double>::infinity();
@@ -127,10 +136,18 @@ WallDistance wall_distance_among_at(const VesselScene& scene, double t, const Ei
   double best_cos = -1;
   Eigen::Vector3d best_diff = Eigen::Vector3d::Zero(), best_n = Eigen::Vector3d::Zero();
   int best_position = -1;
+  // Rest frame: every triangle with a current point within `reach_of` the best distance (plus the tie
+  // tolerance below) has its rest point within `rest_limit` of rest->X.
+  auto reach_of = [&](double d2) { return rest_reach(*rest, std::sqrt(d2 + 2e-12 * (1 + d2))); };
+  double rest_limit = rest ? reach_of(best_d2) : 0.0;
   auto consider = [&](int position) {
     const int f = triangles[position];
+    if (rest) {
+      const Eigen::Vector4d& sphere = rest_spheres ? (*rest_spheres)[position] : scene.face_spheres[f];
+      if ((rest->X - sphere.head<3>()).norm() - sphere[3] > rest_limit) return;  // cannot be nearer than the best
+    }
     const Face& fd = face(cache, scene, f);
-    const double dc = (p - fd.centre).norm() - fd.radius;
+    const double dc = (p - fd.centre()).norm() - fd.radius;
     if (dc > 0 && dc * dc > best_d2 * (1 + 1e-12)) return;
     int region = 0;
     const Eigen::Vector3d c = closest_point_on_triangle(p, fd.a, fd.b, fd.c, region);
@@ -152,12 +169,15 @@ WallDistance wall_distance_among_at(const VesselScene& scene, double t, const Ei
       best.closest = c;
       best_diff = diff;
       best_n = fd.n;
+      if (rest) rest_limit = reach_of(best_d2);
     }
   };
   const int first = hint ? *hint : -1;
   if (first >= 0 && first < static_cast<int>(triangles.size())) consider(first);
   for (std::size_t i = 0; i < triangles.size(); ++i) {
-    if (lower_bounds) {
+    if (lower_bounds && rest) {
+      if ((*lower_bounds)[i] - moved > rest_limit) break;  // sorted: nothing later is closer
+    } else if (lower_bounds) {
       const double lb = (*lower_bounds)[i] - moved;
       if (lb > 0 && lb * lb > best_d2 * (1 + 1e-9) + 1e-18) break;  // sorted: nothing later is closer
     }
@@ -186,6 +206,11 @@ WallDistance wall_distance_among_at(const VesselScene& scene, double t, const Ei
   return best;
 }
 
+bool wall_rest_point_at(const VesselScene& scene, double t, const Eigen::Vector3d& p, const Eigen::Vector3d* guess,
+                        RestPoint& out) {
+  return wall_rest_point(*scene.motion, p, cache_for(scene, t).at, guess, out);
+}
+
 void triangles_near_at(const VesselScene& scene, double t, const Eigen::Vector3d& p, double radius,
                        std::vector<int>& out, std::vector<double>* sphere_distances) {
   Eigen::Vector3d centre;
@@ -199,7 +224,7 @@ void triangles_near_at(const VesselScene& scene, double t, const Eigen::Vector3d
     const Eigen::Vector4d& rest = scene.face_spheres[f];
     if ((centre - rest.head<3>()).norm() - rest[3] > rest_radius) continue;  // cannot come near p
     const Face& fd = face(cache, scene, f);
-    const double d = (p - fd.centre).norm() - fd.radius;
+    const double d = (p - fd.centre()).norm() - fd.radius;
     if (d > radius) continue;
     out[kept++] = f;
     if (sphere_distances) sphere_distances->push_back(d);

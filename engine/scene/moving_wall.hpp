@@ -25,10 +25,22 @@ VesselScene vessel_scene_at(const VesselScene& scene, double t);
 Eigen::Vector3d current_wall_vertex(const VesselScene& scene, int vertex, double t);
 
 // wall_distance_among (engine/scene/vessel_scene.hpp) on the triangles' current shape at time t.
+// With `rest` (p pulled back, wall_rest_point_at): `lower_bounds` and `moved` are REST-configuration
+// distances (each triangle's rest bounding-sphere distance from a rest centre, and |rest->X - centre|);
+// a triangle is skipped, without evaluating its current shape, when its rest bounding sphere is farther
+// from rest->X than rest_reach(best so far), and the scan stops at the first lower bound beyond it: a
+// triangle nearer than the best has its rest point within that reach (wall_motion.hpp). Same answer as
+// the plain scan of the same triangles. `rest_spheres`: the triangles' rest bounding spheres in list
+// order (else read from the scene).
 WallDistance wall_distance_among_at(const VesselScene& scene, double t, const Eigen::Vector3d& p,
                                     const std::vector<int>& triangles, double cutoff,
                                     const std::vector<double>* lower_bounds = nullptr, double moved = 0,
-                                    int* hint = nullptr);
+                                    int* hint = nullptr, const RestPoint* rest = nullptr,
+                                    const std::vector<Eigen::Vector4d>* rest_spheres = nullptr);
+
+// wall_rest_point (wall_motion.hpp) at time t, with the per-time part of the field cached.
+bool wall_rest_point_at(const VesselScene& scene, double t, const Eigen::Vector3d& p, const Eigen::Vector3d* guess,
+                        RestPoint& out);
 
 // triangles_near at time t: a superset of the triangles whose current shape comes within `radius` of p
 // (from the rest grid through rest_query_ball), each kept only if its current bounding sphere is within

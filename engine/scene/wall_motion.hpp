@@ -115,6 +115,35 @@ Eigen::Vector3d wall_vertex_position(const WallMotion& m, const TriangleMesh& re
 
 // The field at an arbitrary rest point X (rigid and cardiac; false for phases, which only know vertices).
 bool wall_field_position(const WallMotion& m, const Eigen::Vector3d& X, double t, Eigen::Vector3d& x);
+// The same at a prepared time (rigid and cardiac only): X + D(X, at).
+Eigen::Vector3d wall_field_position(const WallMotion& m, const Eigen::Vector3d& X, const WallTime& at);
+
+// A current point p at time t pulled back to the REST configuration, with what it takes to turn rest
+// distances around it into current ones and back (the rest-frame candidate lists of
+// engine/contact/detect_contacts.cpp). For a rest point Y and a current triangle point y whose rest point
+// is Y (same barycentric weights): |x(Y) - y| <= K d^2 / 2 (d the longest rest edge), and
+// |x(Y) - x(X)| >= sigma z - K z^2 / 2 with z = |Y - X| (Taylor at X: sigma bounds the smallest singular
+// value of the Jacobian at X from below, K the second derivatives). With e = |x(X) - p| a current
+// triangle point within r of p therefore has z <= z1 or z >= z2, the roots of K z^2 / 2 - sigma z + rho,
+// rho = r + e + K d^2 / 2; and z <= |Y - x(Y)| + |x(Y) - p| + |p - X| <= max|D| + r + K d^2 / 2 + |p - X|
+// rules out z >= z2 when z2 is beyond that (rest_reach).
+struct RestPoint {
+  Eigen::Vector3d X = Eigen::Vector3d::Zero();  // the pre-image of p (Newton), x(X, t) ~ p
+  double sigma = 1;     // lower bound of the Jacobian's smallest singular value at X
+  double curvature = 0; // K: bound of the map's second derivatives over the vertices' cylinder
+  double slack = 0;     // e + K d^2 / 2
+  double global = 0;    // max|D(t)| + K d^2 / 2 + |p - X|: no rest triangle point within r of p is farther than r + global
+};
+// Rigid and cardiac motions (false for phase surfaces: no field between the vertices). `guess`: a start
+// for the Newton iteration (the point's pre-image at a nearby time), or null.
+bool wall_rest_point(const WallMotion& m, const Eigen::Vector3d& p, const WallTime& at, const Eigen::Vector3d* guess,
+                     RestPoint& out);
+// Radius about rp.X holding the rest point of every current triangle point within r of p (z1 above, a
+// little above for rounding); +infinity when the bound cannot say (z2 not beyond the global bound).
+double rest_reach(const RestPoint& rp, double r);
+// A lower bound of the current distance from p of every current triangle point whose rest point is at
+// least z from rp.X (the inverse of rest_reach; 0 when it cannot say).
+double current_reach(const RestPoint& rp, double z);
 
 // Upper bounds over all vertices of |D_i(t)| and of |x_i(t1) - x_i(t0)| (a little above, for rounding).
 double wall_max_displacement(const WallMotion& m, double t);

@@ -7,6 +7,7 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "engine/scene/wall_motion.hpp"
 
@@ -86,6 +87,71 @@ double wall_max_travel(const WallMotion& m, double t0, double t1) {
     }
   }
   return 0;
+}
+
+bool wall_rest_point(const WallMotion& m, const Eigen::Vector3d& p, const WallTime& at, const Eigen::Vector3d* guess,
+                     RestPoint& out) {
+  if (m.kind == WallMotionKind::phases) return false;
+  const double half_dd = 0.5 * m.max_edge_mm * m.max_edge_mm;
+  if (m.kind == WallMotionKind::rigid) {  // a translation: sigma 1, no curvature
+    out.X = p - at.shift;
+    out.sigma = 1;
+    out.curvature = 0;
+    out.slack = (wall_field_position(m, out.X, at) - p).norm() + kRounding;
+    out.global = at.shift.norm() + kRounding + (p - out.X).norm();
+    return true;
+  }
+  // Cardiac: Newton on x(X) = p from the guess (one step from a nearby time's pre-image), else from
+  // p - D(p). The residual e is measured, never assumed: it enters the bounds.
+  const double s = at.s;
+  Eigen::Vector3d X = guess ? *guess : Eigen::Vector3d(p - (wall_field_position(m, p, at) - p));
+  Eigen::Vector3d r = wall_field_position(m, X, at) - p;
+  Eigen::Vector3d radial;
+  for (int it = 0; it < 8 && r.norm() > 1e-11 * (1.0 + p.norm()); ++it) {
+    X -= cardiac_jacobian(m, X, s, radial).partialPivLu().solve(r);
+    r = wall_field_position(m, X, at) - p;
+  }
+  const double e = r.norm();
+  if (!std::isfinite(e)) return false;
+  const Eigen::Vector3d y = X - m.centre;
+  const double yr = (y - y.dot(m.axis) * m.axis).norm();
+  // J = R(theta) [(1 - s rc) P + (1 - s as) a a^T] + s twist (a x q) a^T, |q| = |1 - s rc| |y_r|: the
+  // bracket's singular values are |1 - s rc| (twice) and |1 - s as|, the last term's norm
+  // |s twist| |1 - s rc| |y_r| (Weyl's inequality).
+  const double scale = std::abs(1.0 - s * m.contraction);
+  const double st = s * std::abs(m.twist_rad_per_mm);
+  out.X = X;
+  out.sigma = std::min(scale, std::abs(1.0 - s * m.shortening)) - st * scale * yr;
+  out.curvature = 1.5 * st * (1.0 + st * std::max(m.radius_limit, yr));  // as in rest_query_ball
+  out.slack = e + out.curvature * half_dd + kRounding;
+  out.global = s * m.travel_per_activation + kRounding + out.curvature * half_dd + (p - X).norm();
+  return true;
+}
+
+double rest_reach(const RestPoint& rp, double r) {
+  const double inf = std::numeric_limits<double>::infinity();
+  if (!(rp.sigma > 0.1) || !std::isfinite(r)) return inf;
+  const double rho = std::max(0.0, r) + rp.slack;
+  double z1;
+  if (rp.curvature == 0) {
+    z1 = rho / rp.sigma;
+  } else {
+    const double disc = rp.sigma * rp.sigma - 2.0 * rp.curvature * rho;
+    if (!(disc > 0)) return inf;
+    const double root = std::sqrt(disc);
+    if (!((rp.sigma + root) / rp.curvature > r + rp.global)) return inf;  // z2 not ruled out
+    z1 = 2.0 * rho / (rp.sigma + root);
+  }
+  return z1 * (1.0 + 1e-12) + kRounding;
+}
+
+double current_reach(const RestPoint& rp, double z) {
+  if (!(rp.sigma > 0.1) || !(z > 2 * kRounding)) return 0;
+  double zc = z - 2 * kRounding;
+  if (rp.curvature > 0) zc = std::min(zc, rp.sigma / rp.curvature);
+  const double delta = (rp.sigma * zc - 0.5 * rp.curvature * zc * zc - rp.slack) * (1.0 - 1e-12);
+  if (!(delta > 0) || !(rest_reach(rp, delta) <= z)) return 0;
+  return delta;
 }
 
 void rest_query_ball(const WallMotion& m, const Eigen::Vector3d& p, double r, double t, Eigen::Vector3d& centre,

@@ -52,6 +52,10 @@ Eigen::Vector3d field_displacement(const WallMotion& m, const Eigen::Vector3d& X
 
 }  // namespace
 
+Eigen::Vector3d wall_field_position(const WallMotion& m, const Eigen::Vector3d& X, const WallTime& at) {
+  return X + field_displacement(m, X, at);
+}
+
 bool wall_field_position(const WallMotion& m, const Eigen::Vector3d& X, double t, Eigen::Vector3d& x) {
   if (m.kind == WallMotionKind::phases) return false;
   x = X + field_displacement(m, X, wall_time(m, t));

@@ -30,6 +30,13 @@ struct WallCandidates {
   // Moving walls (VesselScene::motion): the wall times the list (lower bounds, clearance) and `bound`
   // were measured at; later queries take off the wall's largest travel since (wall_max_travel).
   double wall_time = 0, bound_time = 0;
+  // Rigid and cardiac walls keep the list in the REST configuration instead (engine/contact/
+  // detect_contacts.cpp): `centre`, `gathered`, `lower_bounds` and `clearance` are then rest-frame
+  // values around the point's pre-image, valid whatever the heart does; `rest_point` is the point's
+  // last pre-image (the next Newton start).
+  bool rest = false;
+  Eigen::Vector3d rest_point = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector4d> rest_spheres;  // rest bounding sphere per triangle, in list order (locality)
 };
 
 struct WireState {

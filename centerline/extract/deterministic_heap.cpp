@@ -169,8 +169,26 @@ Region* map_region() {
 
 }  // namespace
 
+// Defined only in deterministic_global_new.cpp (the OBJECT library gw_deterministic_new, linked into
+// executables): weak here, so its address is null in a program without the replacement, and the
+// reference alone never pulls the replacement out of a library.
+bool deterministic_global_new_linked() __attribute__((weak));
+
+void* deterministic_new(std::size_t n) { return new_block(n); }
+void* deterministic_new_nothrow(std::size_t n) noexcept {
+  return or_null([&] { return new_block(n); });
+}
+void* deterministic_new_aligned(std::size_t n, std::size_t align) { return heap_alloc_aligned(n, align); }
+void* deterministic_new_aligned_nothrow(std::size_t n, std::size_t align) noexcept {
+  return or_null([&] { return heap_alloc_aligned(n, align); });
+}
+void deterministic_delete(void* p) noexcept { delete_block(p); }
+
+bool DeterministicHeapScope::available() { return &deterministic_global_new_linked != nullptr; }
+
 DeterministicHeapScope::DeterministicHeapScope() {
   if (t_owned) return;  // nested: the outer scope already serves this thread
+  if (!available()) return;  // operator new is not ours: a region would never be used
   Region* r = map_region();
   if (!r) return;
   for (int i = 0; i < kMaxRegions; ++i) {
@@ -212,34 +230,3 @@ int deterministic_heap_retained_regions() { return g_retained.load(std::memory_o
 
 }  // namespace gw
 
-// The replaceable global allocation functions: a thread-local test, then the region or malloc.
-void* operator new(std::size_t n) { return gw::new_block(n); }
-void* operator new[](std::size_t n) { return gw::new_block(n); }
-void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
-  return gw::or_null([&] { return gw::new_block(n); });
-}
-void* operator new[](std::size_t n, const std::nothrow_t&) noexcept {
-  return gw::or_null([&] { return gw::new_block(n); });
-}
-// Over-aligned types never come from a region (nothing in the skeletonisation uses them).
-void* operator new(std::size_t n, std::align_val_t a) { return gw::heap_alloc_aligned(n, static_cast<std::size_t>(a)); }
-void* operator new[](std::size_t n, std::align_val_t a) { return gw::heap_alloc_aligned(n, static_cast<std::size_t>(a)); }
-void* operator new(std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
-  return gw::or_null([&] { return gw::heap_alloc_aligned(n, static_cast<std::size_t>(a)); });
-}
-void* operator new[](std::size_t n, std::align_val_t a, const std::nothrow_t&) noexcept {
-  return gw::or_null([&] { return gw::heap_alloc_aligned(n, static_cast<std::size_t>(a)); });
-}
-
-void operator delete(void* p) noexcept { gw::delete_block(p); }
-void operator delete[](void* p) noexcept { gw::delete_block(p); }
-void operator delete(void* p, std::size_t) noexcept { gw::delete_block(p); }
-void operator delete[](void* p, std::size_t) noexcept { gw::delete_block(p); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { gw::delete_block(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { gw::delete_block(p); }
-void operator delete(void* p, std::align_val_t) noexcept { gw::delete_block(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { gw::delete_block(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { gw::delete_block(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { gw::delete_block(p); }
-void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { gw::delete_block(p); }
-void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept { gw::delete_block(p); }

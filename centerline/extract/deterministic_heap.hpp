@@ -8,8 +8,13 @@
 // last-in first-out), so addresses, and with them every address-ordered container, depend only
 // on the sequence of allocations, i.e. on the input.
 //
-// The scope replaces the global operator new/delete of any program that links it (a
-// thread-local check on each call; unchanged behaviour outside a scope). Memory from a region
+// The scope needs the global operator new/delete replaced (deterministic_global_new.cpp: a
+// thread-local check on each call; unchanged behaviour outside a scope). That replacement is the
+// OBJECT library gw_deterministic_new, linked only into the executables that can extract (the apps
+// and test suites that link gw_centerline or gw_runner), never into a library: a program that
+// links gw_centerline without it (a Python binding) keeps its own allocator, and its scopes are
+// inactive (available() false; results are then correct but not address-independent). Memory
+// from a region
 // is never handed to another thread's scope. When the scope ends with blocks still alive (a
 // lazily created static that outlives the call), the region stays mapped and those blocks stay
 // valid; otherwise it is unmapped. If no region can be reserved the scope does nothing (the
@@ -26,6 +31,9 @@ class DeterministicHeapScope {
   DeterministicHeapScope& operator=(const DeterministicHeapScope&) = delete;
 
   bool active() const { return region_ != nullptr; }
+
+  // Whether this program links the operator new replacement (gw_deterministic_new).
+  static bool available();
 
   // Inside a scope: allocations of the current thread use the normal heap until this ends
   // (for results that must outlive the scope's region).

@@ -65,3 +65,10 @@ TEST_CASE("a block that outlives its scope stays valid, and paused allocations u
   CHECK(outer.active());
   CHECK_FALSE(inner.active());
 }
+
+TEST_CASE("the operator new replacement is linked into this test, not carried by the libraries", "[centerline][determinism]") {
+  // tests/CMakeLists.txt links gw_deterministic_new into the suites that can extract, as
+  // apps/CMakeLists.txt does into the apps; gw_centerline itself no longer holds the replacement (a
+  // program without it gets inactive scopes instead of a hijacked allocator).
+  CHECK(DeterministicHeapScope::available());
+}

@@ -1,6 +1,7 @@
 #include "engine/sim/mechanics_benchmark.hpp"
 
 #include <chrono>
+#include <ctime>
 
 namespace gw {
 
@@ -12,9 +13,13 @@ InsertionBenchmark run_insertion_benchmark(const WireModel& model, const VesselS
   const Control control{push_mm_per_s, 0.0};
   double contact_sum = 0, sweep_sum = 0;
   while (state.inserted_length_mm < length_mm) {
+    timespec c0{}, c1{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &c0);
     const auto t0 = std::chrono::steady_clock::now();
     const StepReport rep = step(model, &scene, control, state);
     b.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &c1);
+    b.cpu_seconds += static_cast<double>(c1.tv_sec - c0.tv_sec) + 1e-9 * static_cast<double>(c1.tv_nsec - c0.tv_nsec);
     ++b.control_steps;
     b.substeps += model.substeps;
     b.stages.detect_s += rep.timings.detect_s;

@@ -13,6 +13,7 @@ namespace gw {
 struct InsertionBenchmark {
   int control_steps = 0, substeps = 0;
   double seconds = 0;                 // wall time inside step()
+  double cpu_seconds = 0;             // this thread's CPU time inside step() (steadier on a shared machine)
   StepTimings stages;                 // summed over the run
   double mean_contacts = 0;           // per sub-step (last sub-step of each control step)
   int max_contacts = 0;

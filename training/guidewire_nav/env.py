@@ -32,7 +32,7 @@ import socket
 import subprocess
 import sys
 from pathlib import Path
-from typing import Any
+from typing import Any, Callable
 
 import gymnasium as gym
 import numpy as np
@@ -242,6 +242,62 @@ class GuidewireEnv(gym.Env):
             self.close()
         except Exception:
             pass
+
+
+class RestartingEnv(gym.Env):
+    """A GuidewireEnv that outlives its server (training survives a dying simulation server).
+
+    ``connect()`` makes the client: at the start and again whenever the connection breaks (the server
+    died): a new local server (``RestartingEnv(lambda: GuidewireEnv(...))``, what gw-train does) or the
+    restarted server of a Ray actor (ray_servers.ServerEnv). The episode the death cut short ends as
+    truncated with ``info["server_restarted"]``; a reset that finds the server gone is retried once on
+    the new one; the episode seeds go on from the same generator, so the run stays seeded."""
+
+    metadata = {"render_modes": []}
+
+    def __init__(self, connect: Callable[[], GuidewireEnv], name: str = "guidewire-server"):
+        super().__init__()
+        self.connect, self.name, self.restarts = connect, name, 0
+        self.env = connect()
+        self.observation_space, self.action_space = self.env.observation_space, self.env.action_space
+        self.spec_reply = self.env.spec_reply
+        self._last_obs = None
+
+    def _reconnect(self) -> None:
+        rng = self.env.np_random
+        try:
+            self.env.close()
+        except Exception:  # noqa: BLE001 - the connection is already broken
+            pass
+        self.env = self.connect()
+        self.env.np_random = rng
+        self.spec_reply = self.env.spec_reply
+        self.restarts += 1
+        print(f"[env] {self.name}: connection lost, on {self.env.host}:{self.env.port} again "
+              f"(restart {self.restarts})", file=sys.stderr)
+
+    def reset(self, *, seed=None, options=None):
+        try:
+            obs, info = self.env.reset(seed=seed, options=options)
+        except (ConnectionError, OSError):
+            self._reconnect()
+            obs, info = self.env.reset(seed=seed, options=options)
+        self._last_obs = obs
+        return obs, info
+
+    def step(self, action):
+        try:
+            obs, reward, terminated, truncated, info = self.env.step(action)
+        except (ConnectionError, OSError):
+            self._reconnect()  # the episode is lost with its server: ended as truncated, reset next
+            return self._last_obs, 0.0, False, True, {"success": False, "is_success": False,
+                                                      "server_restarted": True}
+        self._last_obs = obs
+        return obs, reward, terminated, truncated, info
+
+    def close(self):
+        self.env.close()
+        super().close()
 
 
 def make_env(rank: int = 0, **kwargs):

@@ -24,9 +24,7 @@ import sys
 import time
 from dataclasses import dataclass
 
-import gymnasium as gym
-
-from guidewire_nav.env import GuidewireEnv, find_server_binary
+from guidewire_nav.env import GuidewireEnv, RestartingEnv, find_server_binary
 
 
 @dataclass(frozen=True)
@@ -105,64 +103,29 @@ def start_servers(names: list[str], anatomies: str, server_args: list[str], addr
     return refs, handles
 
 
-class ServerEnv(gym.Env):
-    """GuidewireEnv on a server actor's server that survives the server's death (see the module doc)."""
-
-    metadata = {"render_modes": []}
+class ServerEnv(RestartingEnv):
+    """GuidewireEnv on a server actor's server that survives the server's death (see the module doc):
+    after the first address, each new connection asks the actor (restarted by Ray if it died, which
+    starts its server again) where its server listens now."""
 
     def __init__(self, ref: ServerRef, timeout: float = 120.0):
-        super().__init__()
-        self.ref, self.timeout, self.restarts = ref, timeout, 0
-        self.env = GuidewireEnv(host=ref.host, port=ref.port, timeout=timeout)
-        self.observation_space, self.action_space = self.env.observation_space, self.env.action_space
-        self.spec_reply = self.env.spec_reply
-        self._last_obs = None
+        self.ref, self.timeout, self._connected = ref, timeout, False
+        super().__init__(self._connect, name=f"server {ref.name}")
 
-    def _reconnect(self) -> None:
-        """A new client on the server the actor (restarted by Ray if it died) now runs."""
+    def _connect(self) -> GuidewireEnv:
+        if not self._connected:
+            self._connected = True
+            return GuidewireEnv(host=self.ref.host, port=self.ref.port, timeout=self.timeout)
         import ray
 
         if not ray.is_initialized():  # a SubprocVecEnv worker: join the learner's cluster to ask
             ray.init(address=self.ref.ray_address, namespace=self.ref.namespace, log_to_driver=False)
-        rng = self.env.np_random  # the episode seeds go on from the same stream
-        try:
-            self.env.close()
-        except Exception:  # noqa: BLE001 - the connection is already broken
-            pass
         deadline = time.monotonic() + 600
         while True:
             try:
-                host, port, starts = ray.get(ray.get_actor(self.ref.name).address.remote(), timeout=300)
-                self.env = GuidewireEnv(host=host, port=port, timeout=self.timeout)
-                break
+                host, port, _ = ray.get(ray.get_actor(self.ref.name).address.remote(), timeout=300)
+                return GuidewireEnv(host=host, port=port, timeout=self.timeout)
             except (OSError, ConnectionError, ray.exceptions.RayError):
                 if time.monotonic() > deadline:
                     raise
                 time.sleep(2)
-        self.env.np_random = rng
-        self.restarts += 1
-        print(f"[ray] server {self.ref.name}: connection lost, on {host}:{port} again (start {starts})",
-              file=sys.stderr)
-
-    def reset(self, *, seed=None, options=None):
-        try:
-            obs, info = self.env.reset(seed=seed, options=options)
-        except (ConnectionError, OSError):
-            self._reconnect()
-            obs, info = self.env.reset(seed=seed, options=options)
-        self._last_obs = obs
-        return obs, info
-
-    def step(self, action):
-        try:
-            obs, reward, terminated, truncated, info = self.env.step(action)
-        except (ConnectionError, OSError):
-            self._reconnect()  # the episode is lost with its server: ended as truncated, reset next
-            return self._last_obs, 0.0, False, True, {"success": False, "is_success": False,
-                                                      "server_restarted": True}
-        self._last_obs = obs
-        return obs, reward, terminated, truncated, info
-
-    def close(self):
-        self.env.close()
-        super().close()

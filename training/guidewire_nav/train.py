@@ -1,11 +1,13 @@
 """Train the zero-shot navigation policy: SB3 SAC against the C++ simulator over sockets.
 
-Reads top to bottom: settings -> environments (one guidewire-server per worker) -> SAC with the
-paper's hyper-parameters -> learn with progress bar, logs, checkpoints and periodic evaluation ->
-export the deterministic actor to JSON for the C++ runtime -> training-curve PNG.
+Reads top to bottom: settings -> environments (one guidewire-server per worker, started again if it
+dies) -> SAC with the paper's hyper-parameters (or the run's latest checkpoint with --resume) -> learn
+with progress bar, logs, checkpoints and periodic evaluation -> export the deterministic actor to JSON
+for the C++ runtime -> training-curve PNG.
 
     gw-train --total-steps 150000 --envs 2 --out runs/sac      # = python -m guidewire_nav.train ...
     gw-train --total-steps 300 --learning-starts 100 --out /tmp/smoke   # CI smoke run
+    gw-train --total-steps 200000 --envs 2 --out runs/sac --resume     # on from runs/sac's last checkpoint
 
 Paper (Scarponi et al., section 3.1): actor and critics 3x256, lr 1e-4, batch 256, buffer 10,000,
 gamma 0.98, entropy coefficient learned, 1,000 warm-up steps, one gradient update per step; the 4
@@ -88,7 +90,11 @@ class Settings:
                                  "checkpoints later with the C++ `evaluate` or gw-score-checkpoints)")
     stop_at_success: float = arg(0.0, "stop early once an evaluation reaches this success rate (0 = never)")
     checkpoint_every: int = arg(25_000, "environment steps between SB3 checkpoints (checkpoints/sac_*.zip)")
-    max_minutes: float = arg(0.0, "stop learning after this wall time (0 = run all --total-steps)")
+    max_minutes: float = arg(0.0, "stop learning after this wall time (0 = run all --total-steps; a run cut by "
+                                  "it is not reproducible step for step: prefer --total-steps)")
+    resume: bool = arg(False, "continue the run in --out from its latest checkpoint (networks, optimisers, entropy "
+                              "coefficient, replay buffer, step counter) up to --total-steps; the other settings "
+                              "must be the run's (settings.json)")
     progress: bool = arg(True, "show a progress bar")
     servers: str = arg("", "connect to running servers 'host:port,host:port' instead of spawning them")
     ray: bool = arg(False, "simulation servers as Ray actors with these task settings, spread over the Ray "
@@ -138,12 +144,13 @@ def server_args(s: Settings) -> list[str]:
             "--junctions", s.junctions] + (["--omega-side"] if s.omega_side else [])
 
 
-def make_env_fn(s: Settings, rank: int, eval_env: bool = False, ray_server=None):
-    """A thunk for (Subproc|Dummy)VecEnv: each worker starts (or connects to) its own server; with --ray
-    the server of its actor (ray_servers.ServerRef), reached again after the server restarts."""
+def make_env_fn(s: Settings, rank: int, eval_env: bool = False, ray_server=None, seed_offset: int = 0):
+    """A thunk for (Subproc|Dummy)VecEnv: each worker starts (or connects to) its own server, started again
+    when it dies (env.RestartingEnv); with --ray the server of its actor (ray_servers.ServerRef), reached
+    again after the server restarts. `seed_offset`: a resumed run's episodes follow new seeds."""
 
     def thunk():
-        from guidewire_nav.env import GuidewireEnv
+        from guidewire_nav.env import GuidewireEnv, RestartingEnv
 
         if ray_server is not None:
             from guidewire_nav.ray_servers import ServerEnv
@@ -153,8 +160,9 @@ def make_env_fn(s: Settings, rank: int, eval_env: bool = False, ray_server=None)
             host, port = s.servers.split(",")[rank % len(s.servers.split(","))].rsplit(":", 1)
             env = GuidewireEnv(host=host, port=int(port))
         else:
-            env = GuidewireEnv(anatomies=s.anatomies, server_args=server_args(s))
-        env.reset(seed=s.seed + 1000 * rank + (10**6 if eval_env else 0))
+            env = RestartingEnv(lambda: GuidewireEnv(anatomies=s.anatomies, server_args=server_args(s)),
+                                name=f"server {rank}")
+        env.reset(seed=s.seed + 1000 * rank + (10**6 if eval_env else 0) + 10**7 * seed_offset)
         return env  # episode statistics come from VecMonitor over all workers
 
     return thunk
@@ -284,6 +292,10 @@ class EvalCallback(BaseCallback):
             self.model.save(self.out / "best_model.zip")
         return not (self.s.stop_at_success > 0 and result["success_rate"] >= self.s.stop_at_success)
 
+    def _on_training_start(self) -> None:
+        while self.next_eval is not None and self.next_eval <= self.model.num_timesteps:  # a resumed run
+            self.next_eval += self.s.eval_every
+
     def _on_step(self) -> bool:
         if self.s.max_minutes > 0 and time.time() - self.start > 60 * self.s.max_minutes:
             return False  # wall-time budget spent: learn() returns, the rest of the script runs
@@ -346,14 +358,65 @@ def read_monitor(path: Path) -> list[dict]:
                 for r in csv.DictReader(f)]
 
 
+def read_run_monitors(out: Path) -> list[dict]:
+    """Every episode of a run in order: monitor.monitor.csv, then each resumed part's
+    monitor_from_<step>.monitor.csv by step."""
+    parts = sorted(out.glob("monitor_from_*.monitor.csv"), key=lambda p: int(p.name.split("_")[2].split(".")[0]))
+    return [row for path in [out / "monitor.monitor.csv", *parts] for row in read_monitor(path)]
+
+
+def latest_checkpoint(out: Path) -> tuple[int, Path, Path] | None:
+    """(step, model zip, replay buffer) of the run's latest state that has both: a checkpoint
+    (checkpoints/sac_<N>_steps.zip, sac_replay_buffer_<N>_steps.pkl) or the finished run's final_model.zip
+    with final_replay_buffer.pkl."""
+    found = []
+    for zip_path in (out / "checkpoints").glob("sac_*_steps.zip"):
+        step = int(zip_path.stem.split("_")[1])
+        buffer = zip_path.parent / f"sac_replay_buffer_{step}_steps.pkl"
+        if buffer.is_file():
+            found.append((step, zip_path, buffer))
+    final = out / "final_model.zip"
+    if final.is_file() and (out / "final_replay_buffer.pkl").is_file():
+        steps = json.loads((out / "summary.json").read_text())["steps"] if (out / "summary.json").is_file() else -1
+        found.append((steps, final, out / "final_replay_buffer.pkl"))
+    # at equal steps the final state: a checkpoint is written just before its step's transition is stored
+    return max(found, key=lambda f: (f[0], f[1].name == "final_model.zip")) if found else None
+
+
+def check_resumable(s: Settings, out: Path) -> tuple[int, Path, Path]:
+    """The checkpoint --resume continues from; the run's settings must be these (but for the steps, the
+    time budget, the progress bar and resume itself)."""
+    saved_path = out / "settings.json"
+    if not saved_path.is_file():
+        raise SystemExit(f"--resume: {saved_path} not found: no run to continue in {out}")
+    saved = json.loads(saved_path.read_text())
+    free = {"total_steps", "max_minutes", "progress", "resume"}
+    differ = [k for k, v in dataclasses.asdict(s).items() if k not in free and k in saved and saved[k] != v]
+    if differ:
+        raise SystemExit("--resume: settings differ from the run's settings.json: " +
+                         ", ".join(f"{k} = {getattr(s, k)!r} (run: {saved[k]!r})" for k in differ))
+    latest = latest_checkpoint(out)
+    if latest is None:
+        raise SystemExit(f"--resume: no checkpoint with its replay buffer in {out}")
+    if latest[0] >= s.total_steps:
+        raise SystemExit(f"--resume: the run is at step {latest[0]}, --total-steps {s.total_steps} is not beyond it")
+    return latest
+
+
 def main(argv=None) -> int:
     s = parse_settings(argv)
     out = Path(s.out)
     out.mkdir(parents=True, exist_ok=True)
     commit = git_commit()
     command = "python -m guidewire_nav.train " + " ".join(sys.argv[1:] if argv is None else argv)
-    (out / "settings.json").write_text(json.dumps({**dataclasses.asdict(s), "commit": commit, "command": command},
-                                                  indent=2))
+    resume_from = check_resumable(s, out) if s.resume else None  # (step, model zip, replay buffer)
+    resumed_at = resume_from[0] if resume_from else 0
+    record = {**dataclasses.asdict(s), "commit": commit, "command": command}
+    if resume_from:  # the run's settings stay; each resumption is recorded beside them
+        saved = json.loads((out / "settings.json").read_text())
+        saved.setdefault("resumed", []).append({"at_step": resumed_at, "from": str(resume_from[1]), **record})
+        record = saved
+    (out / "settings.json").write_text(json.dumps(record, indent=2))
 
     # --- seeding: same seed, same run (up to nondeterministic GPU kernels)
     np.random.seed(s.seed)
@@ -368,9 +431,11 @@ def main(argv=None) -> int:
 
         names = [f"server-{rank}" for rank in range(s.envs)] + ["server-eval"]
         ray_servers, ray_actors = start_servers(names, s.anatomies, server_args(s), s.address, {"server-eval": 0})
-    fns = [make_env_fn(s, rank, ray_server=ray_servers.get(f"server-{rank}")) for rank in range(s.envs)]
+    fns = [make_env_fn(s, rank, ray_server=ray_servers.get(f"server-{rank}"), seed_offset=resumed_at)
+           for rank in range(s.envs)]
     vec_env = SubprocVecEnv(fns) if s.envs > 1 else DummyVecEnv(fns)
-    vec_env = VecMonitor(vec_env, str(out / "monitor"), info_keywords=("success",))
+    monitor = out / (f"monitor_from_{resumed_at}" if resume_from else "monitor")  # a resumed part: its own file
+    vec_env = VecMonitor(vec_env, str(monitor), info_keywords=("success",))
     eval_env = make_env_fn(s, 0, eval_env=True, ray_server=ray_servers.get("server-eval"))()
 
     # --- SAC with the paper's settings; the actor may get its own learning rate (SACWithActorRate)
@@ -379,7 +444,12 @@ def main(argv=None) -> int:
         learning_starts=s.learning_starts, train_freq=s.train_freq, gradient_steps=s.gradient_steps,
         seed=s.seed, device=s.device, verbose=0, actor_learning_rate=s.actor_learning_rate,
     )
-    if s.init_model:  # fine-tuning: the saved networks (and learned entropy coefficient), a fresh buffer
+    if resume_from:  # the run's own state: networks, optimisers, entropy coefficient, step counter, buffer
+        model = SACWithActorRate.load(resume_from[1], env=vec_env, **sac_settings)
+        model.load_replay_buffer(resume_from[2])
+        print(f"[train] resumed {out} at step {model.num_timesteps} ({model.replay_buffer.size()} transitions "
+              f"in the replay buffer)", file=sys.stderr)
+    elif s.init_model:  # fine-tuning: the saved networks (and learned entropy coefficient), a fresh buffer
         model = SACWithActorRate.load(s.init_model, env=vec_env, **sac_settings)
     else:
         model = SACWithActorRate("MlpPolicy", vec_env, ent_coef=s.ent_coef,
@@ -398,12 +468,18 @@ def main(argv=None) -> int:
     eval_cb = EvalCallback(s, eval_env, out, evals, start)
     callbacks = CallbackList([ActorUpdates(s.actor_freeze_steps, reference, s.anchor_weight, s.batch_size), eval_cb,
                               CheckpointCallback(max(1, s.checkpoint_every // s.envs), str(out / "checkpoints"),
-                                                 name_prefix="sac")])
+                                                 name_prefix="sac", save_replay_buffer=True)])
 
-    # --- learn
-    (out / "evaluations.jsonl").unlink(missing_ok=True)
-    model.learn(total_timesteps=s.total_steps, callback=callbacks, progress_bar=s.progress)
+    # --- learn (a resumed run: the steps left, its counter going on, its evaluations kept)
+    if resume_from and (out / "evaluations.jsonl").is_file():
+        evals += [json.loads(line) for line in (out / "evaluations.jsonl").read_text().splitlines() if line.strip()]
+        eval_cb.best = max((e["success_rate"] for e in evals), default=-1.0)
+    elif not resume_from:
+        (out / "evaluations.jsonl").unlink(missing_ok=True)
+    model.learn(total_timesteps=s.total_steps - model.num_timesteps, callback=callbacks, progress_bar=s.progress,
+                reset_num_timesteps=not resume_from)
     model.save(out / "final_model.zip")
+    model.save_replay_buffer(out / "final_replay_buffer.pkl")  # so that a finished run can be continued
     if s.eval_episodes > 0 and (not evals or evals[-1]["step"] != model.num_timesteps):
         eval_cb.run_eval()
     wall = time.time() - start
@@ -416,6 +492,7 @@ def main(argv=None) -> int:
     summary = {
         "command": command, "commit": commit, "settings": dataclasses.asdict(s),
         "steps": int(model.num_timesteps), "wall_time_s": round(wall, 1),
+        "resumed_at_steps": [r["at_step"] for r in record.get("resumed", [])],
         "device": str(model.device), "machine": platform.processor() or platform.machine(),
         "torch_threads": torch.get_num_threads(),
         "best_success_rate": max((e["success_rate"] for e in evals), default=None),
@@ -425,7 +502,7 @@ def main(argv=None) -> int:
     (out / "summary.json").write_text(json.dumps(summary, indent=2))
 
     # --- training curve
-    plot_curve(out / "training_curve.png", read_monitor(out / "monitor.monitor.csv"), evals, anatomies=s.anatomies)
+    plot_curve(out / "training_curve.png", read_run_monitors(out), evals, anatomies=s.anatomies)
 
     vec_env.close()
     eval_env.close()

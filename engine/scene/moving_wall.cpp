@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "engine/scene/closest_point_triangle.hpp"
@@ -13,14 +14,13 @@ namespace gw {
 
 namespace {
 
-// The current corners, unit normal and bounding sphere of face f (make_vessel_scene's formulas), with
-// the time stamp it was computed for: two cache lines per face (the centre is recomputed by the same
-// formula, bit for bit), because a sub-step's queries touch faces scattered over the whole mesh and
-// their cost is mostly cache misses.
-struct alignas(64) Face {
+// The current corners, unit normal and bounding sphere of face f (make_vessel_scene's formulas; the
+// centre is recomputed by the same formula, bit for bit). A time's faces are kept in a dense pool in the
+// order they were first asked for, found through one 8-byte key per mesh face (epoch, pool slot): a
+// sub-step's queries touch faces scattered over the whole mesh, and their cost was mostly cache misses.
+struct Face {
   Eigen::Vector3d a, b, c, n;
   double radius;
-  int stamp = 0;
   Eigen::Vector3d centre() const { return (a + b + c) / 3.0; }
 };
 // A current vertex position and its stamp in one line; the vertex normal's stamp beside it.
@@ -40,7 +40,9 @@ struct CurrentWallCache {
   WallTime at;
   std::vector<Vertex> v;
   std::vector<Eigen::Vector3d> n;
-  std::vector<Face> faces;
+  std::vector<std::uint64_t> face_key;  // per mesh face: epoch << 32 | slot in `faces`
+  std::vector<Face> faces;              // the pool (sized to the mesh once: never reallocated)
+  std::size_t faces_used = 0;
 };
 
 CurrentWallCache& cache_for(const VesselScene& s, double t) {
@@ -61,10 +63,12 @@ CurrentWallCache& cache_for(const VesselScene& s, double t) {
       c.epoch == std::numeric_limits<int>::max()) {
     c.v.assign(m.vertices, Vertex{});
     c.n.resize(m.vertices);
-    c.faces.assign(s.mesh.F.rows(), Face{});
+    c.face_key.assign(s.mesh.F.rows(), 0);
+    c.faces.resize(s.mesh.F.rows());
     c.epoch = 0;
   }
   ++c.epoch;
+  c.faces_used = 0;
   c.id = m.id;
   c.t = t;
   c.at = wall_time(m, t);
@@ -83,9 +87,11 @@ const Eigen::Vector3d& vertex(CurrentWallCache& c, const VesselScene& s, int i) 
 
 
 const Face& face(CurrentWallCache& cache, const VesselScene& s, int f) {
-  Face& r = cache.faces[f];
-  if (r.stamp == cache.epoch) return r;
-  r.stamp = cache.epoch;
+  std::uint64_t& key = cache.face_key[f];
+  if ((key >> 32) == static_cast<std::uint64_t>(cache.epoch)) return cache.faces[key & 0xffffffffu];
+  const std::size_t slot = cache.faces_used++;
+  key = (static_cast<std::uint64_t>(cache.epoch) << 32) | slot;
+  Face& r = cache.faces[slot];
   r.a = vertex(cache, s, s.mesh.F(f, 0));
   r.b = vertex(cache, s, s.mesh.F(f, 1));
   r.c = vertex(cache, s, s.mesh.F(f, 2));

@@ -29,8 +29,9 @@ def pytest_runtest_makereport(item, call):
 
 @pytest.fixture
 def navigate_episode(tmp_path):
-    """run(controller) -> (observations, actions) of one C++ `navigate` episode (t1_straight_y, target 1,
-    seed 3) from its trajectory JSON. Frame 0 is the reset; frame k+1 holds the action taken on frame k."""
+    """run(controller) -> (observations, actions, omega's index) of one C++ `navigate` episode (t1_straight_y,
+    target 1, seed 3) from its trajectory JSON (the index from its observation_names). Frame 0 is the reset;
+    frame k+1 holds the action taken on frame k."""
     navigate = guidewire_nav.app_path("navigate")
     if not navigate.is_file():
         pytest.skip(f"navigate not built ({navigate}); set GW_BUILD_DIR")
@@ -39,8 +40,9 @@ def navigate_episode(tmp_path):
         subprocess.run([str(navigate), "--anatomy", str(REPO / "anatomies/train/t1_straight_y/t1_straight_y.stl"),
                         "--target", "1", "--episodes", "1", "--seed", "3", "--controller", controller,
                         "--out", str(tmp_path)], check=True, capture_output=True)
-        frames = json.loads((tmp_path / "episode0_target1.json").read_text())["frames"]
-        return frames["observation"], frames["action"]
+        trace = json.loads((tmp_path / "episode0_target1.json").read_text())
+        frames = trace["frames"]
+        return frames["observation"], frames["action"], trace["observation_names"].index("omega")
 
     return run
 
@@ -59,6 +61,7 @@ def navigate_frames(tmp_path):
         subprocess.run([str(navigate), "--anatomy", str(REPO / anatomy), "--target", str(target), "--episodes", "1",
                         "--seed", str(seed), "--controller", controller, "--out", str(out)],
                        check=True, capture_output=True)
-        return json.loads((out / f"episode0_target{target}.json").read_text())["frames"]
+        trace = json.loads((out / f"episode0_target{target}.json").read_text())
+        return {**trace["frames"], "omega_index": trace["observation_names"].index("omega")}
 
     return run

@@ -8,15 +8,15 @@ from guidewire_nav.env import find_server_binary
 
 
 def test_scripted_rule_is_the_cpp_one():
-    c = baselines.OmegaController()
+    c = baselines.OmegaController(omega_index=4)  # wherever the server's spec puts omega
     obs = np.zeros(12, dtype=np.float32)
     for omega, action in [(1.0, 1.0), (0.0, 1.0), (-0.9, 1.0), (-0.94, 1.0), (-0.96, 0.0), (-0.99, 0.0)]:
-        obs[baselines.OMEGA] = omega
+        obs[4] = omega
         assert c(obs) == action, omega
     assert baselines.PushOnly()(obs) == 0.0
-    mirrored = baselines.OmegaControllerCCW()
+    mirrored = baselines.OmegaControllerCCW(omega_index=4)
     for omega, action in [(0.0, -1.0), (-0.94, -1.0), (-0.96, 0.0)]:
-        obs[baselines.OMEGA] = omega
+        obs[4] = omega
         assert mirrored(obs) == action, omega
 
 
@@ -39,12 +39,13 @@ def test_short_run_on_a_training_pattern():
     assert 0 <= push["successes"] <= 4
 
 
-@pytest.mark.parametrize("cpp_name, controller", [("scripted-omega", baselines.OmegaController()),
-                                                  ("scripted-omega-ccw", baselines.OmegaControllerCCW()),
-                                                  ("push-only", baselines.PushOnly())])
+@pytest.mark.parametrize("cpp_name, controller", [("scripted-omega", baselines.OmegaController),
+                                                  ("scripted-omega-ccw", baselines.OmegaControllerCCW),
+                                                  ("push-only", baselines.PushOnly)])
 def test_each_baseline_acts_as_its_cpp_namesake(navigate_episode, cpp_name, controller):
     """Replaying a C++ episode's observations through the Python baseline gives the C++ actions."""
-    observations, actions = navigate_episode(cpp_name)
+    observations, actions, omega = navigate_episode(cpp_name)
+    controller = controller(omega)
     python = [controller(np.asarray(o)) for o in observations[:-1]]
     assert python == pytest.approx(actions[1:], abs=1e-9)  # frame k+1 holds the action taken on frame k
     if cpp_name.startswith("scripted"):  # both branches of the rule were exercised: turning and holding

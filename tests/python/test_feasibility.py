@@ -39,9 +39,9 @@ def test_bad_cases_and_schedules_are_refused():
 def test_each_schedule_acts_as_its_cpp_namesake(navigate_episode, name):
     """The schedules are written twice (here and apps/runner/rotation_schedules.cpp): replaying the
     observations of a C++ episode through the Python rule must give the C++ actions, step by step."""
-    observations, actions = navigate_episode(name)
+    observations, actions, omega = navigate_episode(name)
     assert len(actions) > 100  # frame 0 is the reset (no action); frame k+1 holds the action taken on frame k
-    python = [feasibility.SCHEDULES[name](observations[k], k) for k in range(len(actions) - 1)]
+    python = [feasibility.SCHEDULES[name](observations[k][omega], k) for k in range(len(actions) - 1)]
     assert python == pytest.approx(actions[1:], abs=1e-9)
     if name.startswith("aim"):  # both branches of the rule were exercised: turning and holding
         assert 0.0 in python and any(a != 0.0 for a in python)
@@ -56,12 +56,15 @@ def test_each_schedule_counts_like_its_cpp_namesake_on_a_tree(navigate_frames, n
     obs, actions, control = frames["observation"], frames["action"], frames["agent_in_control"]
     applied = [j for j in range(1, len(actions)) if control[j]]
     assert 20 < len(applied) < len(actions) - 20  # control was handed over and back: out-of-control stretches
-    python = [feasibility.SCHEDULES[name](obs[j - 1], k) for k, j in enumerate(applied)]
+    omega = frames["omega_index"]
+    python = [feasibility.SCHEDULES[name](obs[j - 1][omega], k) for k, j in enumerate(applied)]
     assert python == pytest.approx([actions[j] for j in applied], abs=1e-9)
 
 
 class _HandOverEnv:
     """An env whose task applies every other action (in_control alternates), recording what it was sent."""
+
+    omega_index = 9
 
     def __init__(self, steps: int):
         self.steps, self.sent, self.t = steps, [], 0
@@ -80,7 +83,7 @@ class _HandOverEnv:
 def test_run_episode_counts_only_applied_actions():
     env, seen = _HandOverEnv(8), []
 
-    def schedule(obs, k):
+    def schedule(omega, k):
         seen.append(k)
         return 1.0 + k
 

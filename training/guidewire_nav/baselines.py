@@ -17,8 +17,6 @@ import numpy as np
 
 from guidewire_nav.env import GuidewireEnv
 
-OMEGA = 9  # observation index of omega in every layout (the server's spec names it: env.observation_names)
-
 # The scripted omega rule, the one Python implementation (C++: scripted_omega_action, apps/runner/controller.hpp,
 # the same threshold): turn at full rate while the tip bends less than 18 degrees short of straight away from the
 # wrong branch (omega > release), then hold. Used by OmegaController and the aim-* schedules of feasibility.py.
@@ -34,6 +32,9 @@ class PushOnly:
     """Never rotates: whatever the random start roll gives."""
 
     name = "push_only"
+
+    def __init__(self, omega_index: int = 0):
+        pass
 
     def reset(self) -> None:
         pass
@@ -54,14 +55,14 @@ class OmegaController:
     name = "omega_scripted"
     turn = 1.0
 
-    def __init__(self, release: float = SCRIPTED_OMEGA_RELEASE):
-        self.release = release
+    def __init__(self, omega_index: int, release: float = SCRIPTED_OMEGA_RELEASE):
+        self.omega_index, self.release = omega_index, release  # omega's index: env.omega_index (the spec's names)
 
     def reset(self) -> None:
         pass
 
     def __call__(self, obs: np.ndarray) -> float:
-        return scripted_omega_action(obs[OMEGA], self.release, self.turn)
+        return scripted_omega_action(obs[self.omega_index], self.release, self.turn)
 
 
 class OmegaControllerCCW(OmegaController):
@@ -76,8 +77,8 @@ CONTROLLERS = {"push_only": PushOnly, "omega_scripted": OmegaController, "omega_
 
 def run_episodes(controller_name: str, anatomy: str, seeds: list[int], env_kwargs: dict) -> list[dict]:
     """Runs one episode per seed on `anatomy`; returns the final info of each (plus return and steps)."""
-    controller = CONTROLLERS[controller_name]()
     env = GuidewireEnv(**env_kwargs)
+    controller = CONTROLLERS[controller_name](env.omega_index)
     results = []
     try:
         for seed in seeds:

@@ -40,9 +40,10 @@ import numpy as np
 import guidewire_nav
 
 PROTOCOL = "guidewire-nav/protocol/1"
-# obs/1 and obs/2: 11 values, omega's plane differs; obs/3: obs/2 and omega's sine (12 values); obs/4: obs/3 with
-# combined junctions (server_args=["--omega-side", "--junctions", "combined"]; docs/junctions.md)
-OBS_LAYOUTS = ("guidewire-nav/obs/1", "guidewire-nav/obs/2", "guidewire-nav/obs/3", "guidewire-nav/obs/4")
+# The observation layout is the server's (spec: "obs_layout" and observation_space.names; C++
+# ObservationLayout, engine/task/observation.hpp): obs/1 and obs/2, 11 values, omega's plane differs; obs/3:
+# obs/2 and omega's sine (12 values); obs/4: obs/3 with combined junctions. The client reads what it needs
+# (omega's index) from the names and keeps no copy of the layouts.
 
 
 class ServerError(RuntimeError):
@@ -143,13 +144,14 @@ class GuidewireEnv(gym.Env):
         except BaseException:
             self.close()
             raise
-        if self.spec_reply.get("protocol") != PROTOCOL or self.spec_reply.get("obs_layout") not in OBS_LAYOUTS:
+        obs_space = self.spec_reply.get("observation_space", {})
+        if (self.spec_reply.get("protocol") != PROTOCOL or not str(self.spec_reply.get("obs_layout", "")).startswith(
+                "guidewire-nav/obs/") or "omega" not in obs_space.get("names", [])):
             self.close()
             raise RuntimeError(
-                f"server speaks {self.spec_reply.get('protocol')} / {self.spec_reply.get('obs_layout')}, "
-                f"this client {PROTOCOL} / {' or '.join(OBS_LAYOUTS)}"
+                f"server speaks {self.spec_reply.get('protocol')} / {self.spec_reply.get('obs_layout')} (observations "
+                f"{obs_space.get('names')}), this client {PROTOCOL} with a guidewire-nav/obs/N layout that has omega"
             )
-        obs_space = self.spec_reply["observation_space"]
         self.observation_space = gym.spaces.Box(
             low=np.asarray(obs_space["low"], dtype=np.float32),
             high=np.asarray(obs_space["high"], dtype=np.float32),
@@ -162,6 +164,7 @@ class GuidewireEnv(gym.Env):
             dtype=np.float32,
         )
         self.observation_names = list(obs_space["names"])
+        self.omega_index = self.observation_names.index("omega")  # what the scripted rule and schedules read
         self.anatomy_names = [a["name"] for a in self.spec_reply["anatomies"]]
         self.default_options = dict(options or {})
 
@@ -261,6 +264,7 @@ class RestartingEnv(gym.Env):
         self.env = connect()
         self.observation_space, self.action_space = self.env.observation_space, self.env.action_space
         self.spec_reply = self.env.spec_reply
+        self.observation_names, self.omega_index = self.env.observation_names, self.env.omega_index
         self._last_obs = None
 
     def _reconnect(self) -> None:

@@ -30,19 +30,20 @@ from pathlib import Path
 
 import numpy as np
 
-from guidewire_nav.baselines import OMEGA, scripted_omega_action  # observation index of omega; the scripted rule
+from guidewire_nav.baselines import scripted_omega_action  # the scripted rule
 
-# schedule(obs, k): the action from the observation and k, the number of actions the task has applied so far
-# (steps in control: on trees only near a bifurcation), as the C++ schedules count them.
+# schedule(omega, k): the action from omega (read at the index the server's spec names) and k, the number of
+# actions the task has applied so far (steps in control: on trees only near a bifurcation), as the C++
+# schedules count them.
 SCHEDULES = {
-    "aim-0.95": lambda obs, k: scripted_omega_action(obs[OMEGA], -0.95, 1.0),
-    "aim-0.7": lambda obs, k: scripted_omega_action(obs[OMEGA], -0.7, 1.0),
-    "aim-0.95-ccw": lambda obs, k: scripted_omega_action(obs[OMEGA], -0.95, -1.0),
-    "spin-1": lambda obs, k: -1.0,
-    "spin-0.3": lambda obs, k: -0.3,
-    "spin+0.3": lambda obs, k: 0.3,
-    "spin+1": lambda obs, k: 1.0,
-    "wiggle": lambda obs, k: math.sin(0.3 * k),
+    "aim-0.95": lambda omega, k: scripted_omega_action(omega, -0.95, 1.0),
+    "aim-0.7": lambda omega, k: scripted_omega_action(omega, -0.7, 1.0),
+    "aim-0.95-ccw": lambda omega, k: scripted_omega_action(omega, -0.95, -1.0),
+    "spin-1": lambda omega, k: -1.0,
+    "spin-0.3": lambda omega, k: -0.3,
+    "spin+0.3": lambda omega, k: 0.3,
+    "spin+1": lambda omega, k: 1.0,
+    "wiggle": lambda omega, k: math.sin(0.3 * k),
 }
 
 
@@ -52,7 +53,7 @@ def run_episode(env, anatomy: str, target: int, seed: int, schedule) -> bool:
     k, done = 0, False
     while not done:
         applied = bool(info.get("in_control", True))  # the task applies the next action (else it is ignored)
-        action = schedule(obs, k) if applied else 0.0
+        action = schedule(float(obs[env.omega_index]), k) if applied else 0.0
         obs, _, terminated, truncated, info = env.step(np.array([action], dtype=np.float32))
         k += applied
         done = terminated or truncated

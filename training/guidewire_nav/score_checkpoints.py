@@ -19,6 +19,7 @@ training anatomies), as `navigate` would run it for a user. Checkpoints are expo
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import os
 import subprocess
@@ -39,10 +40,18 @@ VALIDATION = [
     ("anatomies/validation/syn_validation/syn_validation.stl", [1, 2, 3, 4]),
 ]
 def run_layout(settings: dict) -> str:
-    """The observation layout a run's settings.json trained on (observation.hpp)."""
-    if settings.get("omega_side", False):
-        return "guidewire-nav/obs/4" if settings.get("junctions", "separate") == "combined" else "guidewire-nav/obs/3"
-    return {"approach": "guidewire-nav/obs/2", "correct_branch": "guidewire-nav/obs/1"}[settings.get("omega_plane", "approach")]
+    """The observation layout a run's settings.json trained on: what a server started with the run's task
+    settings says in its spec (the C++ ObservationLayout; no copy of the layouts here)."""
+    from guidewire_nav.env import GuidewireEnv
+    from guidewire_nav.train import Settings, server_args
+
+    known = {f.name for f in dataclasses.fields(Settings)}
+    env = GuidewireEnv(anatomies="t1_straight_y", server_args=server_args(
+        Settings(**{k: v for k, v in settings.items() if k in known})))
+    try:
+        return env.spec_reply["obs_layout"]
+    finally:
+        env.close()
 
 
 def app(name: str) -> Path:

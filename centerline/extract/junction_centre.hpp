@@ -22,6 +22,8 @@ namespace gw {
 // lumen it shares with that vessel (merged_lumen_axis.hpp) before its axis is intersected with the
 // vessel's. `wall_noise` (estimate_wall_noise.hpp; 0 on a smooth surface) loosens the traced arcs'
 // fit tolerance by the wall's own roughness.
+// Per junction, in named stages (junction_centre.cpp): junction_arms, fit_arm_axes, least_squares_centre,
+// side_branch_centre, trace_arms, reattach_arms.
 void recentre_junctions(const SkeletonTree& tree, std::vector<Eigen::Vector3d>& nodes,
                         std::vector<RefinedBranch>& branches, const VesselWall& wall, double spacing,
                         double max_shift = 6.0, double wall_noise = 0.0);

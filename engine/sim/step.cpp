@@ -52,8 +52,183 @@ constexpr double kMaxSubstepTravelMm = 0.05;
 // At most this many halvings (model.h / 64 = 8 us at the default 0.5 ms).
 constexpr int kMaxSubstepHalvings = 6;
 
-// One integration sub-step of length h. With `may_split`, returns before changing the wire's motion
-// (with `split` = true) when a node would travel more than kMaxSubstepTravelMm.
+// Stage: the linearised implicit Euler system of the free nodes (Eq. 1) assembled, factored and solved
+// for the free-motion velocity change ws.dv.head(6 nf). False when the system is not positive definite.
+bool free_motion(const WireModel& model, const WireState& state, double push, double rotate, double dt,
+                 StepWorkspace& ws, StepReport& rep, std::chrono::steady_clock::time_point& clock) {
+  const int n = model.nodes;
+  assemble_system(model, state, push, rotate, dt, ws.sys);
+  const int nf = n - ws.sys.first_free;
+  rep.free_nodes = nf;
+  rep.timings.assemble_s = seconds_since(clock);
+  if (ws.dv.size() < 6 * n) ws.dv.resize(6 * n);
+  auto dv = ws.dv.head(6 * nf);
+  if (nf > 0) {
+    if (!factor_block_tridiagonal(ws.sys.a, ws.factor)) return false;
+    dv = ws.sys.rhs.head(6 * nf);
+    solve_block_tridiagonal(ws.sys.a, ws.factor, dv);
+  }
+  rep.timings.solve_s = seconds_since(clock);
+  return true;
+}
+
+// Stage: contacts at the start of the step, linearised there (Eq. 2), with the free-motion velocities;
+// their impulses (warm-started from the previous sub-step's), a second solve where a contact's normal at
+// mid-motion turned, the velocity change added to ws.dv and the contact forces into the state. Returns
+// a problem (the wire found outside the wall) or "".
+std::string constrain_contacts(const WireModel& model, const VesselScene& scene, WireState& state, double push,
+                               double dt, StepWorkspace& ws, StepReport& rep,
+                               std::chrono::steady_clock::time_point& clock) {
+  const int n = model.nodes, k = ws.sys.first_free, nf = n - k;
+  auto dv = ws.dv.head(6 * nf);
+  ws.v_contact.resize(n);
+  for (int i = 0; i < n; ++i)
+    ws.v_contact[i] = i < k ? Eigen::Vector3d(push * state.direction)
+                            : Eigen::Vector3d(state.v[i] + dv.segment<3>(6 * (i - k)));
+  double outside = 0;
+  detect_contacts(model, scene, state, ws.v_contact, dt, ws.contacts, outside);
+  rep.contacts = static_cast<int>(ws.contacts.size());
+  rep.timings.detect_s = seconds_since(clock);
+  if (outside > model.params.divergence_margin_mm)
+    return "the wire is " + std::to_string(outside) + " mm outside the vessel wall (t = " +
+           std::to_string(state.time) + " s)";
+  if (!ws.contacts.empty()) {
+    const double mu = model.params.friction;
+    const int iters = model.params.contact_iterations;
+    ws.cws.lever = model.params.friction_torque ? model.radius_mm : 0.0;
+    if (ws.cws.lever > 0)  // the surface point's slip needs the free angular velocity too
+      for (ContactPoint& c : ws.contacts) {
+        c.w_free = c.wa * (state.w[c.node_a] + dv.segment<3>(6 * (c.node_a - k) + 3));
+        if (c.node_b >= 0) c.w_free += c.wb * (state.w[c.node_b] + dv.segment<3>(6 * (c.node_b - k) + 3));
+      }
+    prepare_contact_compliance(ws.sys.a, ws.factor, k, ws.contacts, ws.cws);
+    // Warm start from the previous sub-step's normal impulses of the same points.
+    const int m = static_cast<int>(ws.contacts.size());
+    if (static_cast<int>(state.contact_impulse.size()) != contact_point_count(model))
+      state.contact_impulse.assign(contact_point_count(model), 0.0);
+    if (ws.cws.impulse.size() < 3 * m) ws.cws.impulse.conservativeResize(3 * m);
+    for (int c = 0; c < m; ++c) ws.cws.impulse[3 * c] = state.contact_impulse[ws.contacts[c].point];
+    ContactSolveResult cr = solve_contact_impulses(ws.contacts, dt, mu, iters, true, ws.cws);
+    contact_velocity_change(ws.sys.a, ws.factor, ws.contacts, ws.cws);
+    // Second pass with each contact re-linearised at the middle of its constrained motion: the wall
+    // normal there makes g(x1) ~ g(x0) + n_mid . (x1 - x0) second-order accurate, so a wire pressed on
+    // a curved wall does not chatter sideways between the tangent planes at its start and end points.
+    double turned = 0;
+    for (ContactPoint& c : ws.contacts) {
+      Eigen::Vector3d v_end = c.v_free + c.wa * ws.cws.h_t_p.segment<3>(6 * (c.node_a - k));
+      if (c.node_b >= 0) v_end += c.wb * ws.cws.h_t_p.segment<3>(6 * (c.node_b - k));
+      const Eigen::Vector3d mid = contact_point_position(model, state.x, c.point) + 0.5 * dt * v_end;
+      const double need = model.radius_mm + model.params.contact_margin_mm + dt * v_end.norm();
+      // Exact to the cutoff: a wall a little beyond `need` at mid-motion still gives this contact its normal.
+      // A moving wall is taken at mid-motion too, seen from its shape at the start of the step: the point
+      // is carried back by the wall's mean velocity over the sub-step (half of its travel), which is the
+      // same query for a translating wall and differs by second-order terms otherwise (the wall's
+      // acceleration, h^2 a / 8, and its strain rate times h / 2: of order 1e-4 rad for the coronary field
+      // at 100 bpm, against the 4e-3 rad that trigger a second solve). It saves evaluating the triangles,
+      // normals and vertex normals at a third time per sub-step (t + h / 2, on top of t and t + h).
+      const Eigen::Vector3d seen = scene.motion ? Eigen::Vector3d(mid - 0.5 * dt * c.v_wall) : mid;
+      const WallDistance wd = cached_wall_distance(model, scene, state, c.point, seen, need, true, state.time);
+      if (wd.triangle < 0 || !same_wall_side(c.n, wd.inward)) continue;
+      turned = std::max(turned, 1.0 - wd.inward.dot(c.n));
+      c.n = wd.inward;
+      c.t1 = c.n.unitOrthogonal();
+      c.t2 = c.n.cross(c.t1);
+    }
+    if (turned > 1e-5) {  // a normal turned by more than ~0.25 degrees: solve again with the new ones
+      cr = solve_contact_impulses(ws.contacts, dt, mu, iters, true, ws.cws);
+      contact_velocity_change(ws.sys.a, ws.factor, ws.contacts, ws.cws);
+    }
+    dv += ws.cws.h_t_p.head(6 * nf);
+    std::fill(state.contact_impulse.begin(), state.contact_impulse.end(), 0.0);
+    for (int c = 0; c < m; ++c) state.contact_impulse[ws.contacts[c].point] = ws.cws.impulse[3 * c];
+    rep.contact_iterations = cr.iterations;
+    for (std::size_t c = 0; c < ws.contacts.size(); ++c) {
+      const ContactPoint& cp = ws.contacts[c];
+      const Eigen::Vector3d f = (cp.n * ws.cws.impulse[3 * c] + cp.t1 * ws.cws.impulse[3 * c + 1] +
+                                 cp.t2 * ws.cws.impulse[3 * c + 2]) /
+                                dt;
+      state.contact_force[cp.node_a] += cp.wa * f;
+      if (cp.node_b >= 0) state.contact_force[cp.node_b] += cp.wb * f;
+    }
+  }
+  rep.timings.constraints_s = seconds_since(clock);
+  return "";
+}
+
+// Stage: whether the step's motion would carry some free node further than kMaxSubstepTravelMm.
+bool travels_too_far(const WireModel& model, const WireState& state, const StepWorkspace& ws, double dt) {
+  const int n = model.nodes, k = ws.sys.first_free, nf = n - k;
+  const auto dv = ws.dv.head(6 * nf);
+  double travel = 0;
+  for (int i = k; i < n; ++i) travel = std::max(travel, (state.v[i] + dv.segment<3>(6 * (i - k))).norm());
+  return dt * travel > kMaxSubstepTravelMm;
+}
+
+// Stage: the free nodes integrated (semi-implicit: positions with the new velocities), the introducer
+// driven, the clock advanced. Returns the kinetic energy.
+double integrate(const WireModel& model, WireState& state, double push, double rotate, double dt,
+                 const StepWorkspace& ws) {
+  const int n = model.nodes, k = ws.sys.first_free, nf = n - k;
+  const auto dv = ws.dv.head(6 * nf);
+  double kinetic = 0;
+  for (int i = k; i < n; ++i) {
+    state.v[i] += dv.segment<3>(6 * (i - k));
+    state.w[i] += dv.segment<3>(6 * (i - k) + 3);
+    state.x[i] += dt * state.v[i];
+    state.q[i] = (Eigen::Quaterniond(so3_exp(dt * state.w[i])) * state.q[i]).normalized();
+    if (model.params.per_axis_rotational_inertia)
+      kinetic += 0.5 * model.mass[i] * state.v[i].squaredNorm() +
+                 0.5 * state.w[i].dot(node_rotational_inertia(model, i, state.q[i].toRotationMatrix()) * state.w[i]);
+    else
+      kinetic += 0.5 * model.mass[i] * state.v[i].squaredNorm() + 0.5 * model.rot_inertia[i] * state.w[i].squaredNorm();
+  }
+  state.inserted_length_mm = std::clamp(state.inserted_length_mm + dt * push, 0.0, model.params.length_mm);
+  state.proximal_rotation_rad += dt * rotate;
+  place_held_nodes(model, state, push, rotate);
+  state.time += dt;
+  ++state.steps;
+  return kinetic;
+}
+
+// Stage: what diverged after the step, or "": NaN, an exploding speed or energy, or a constrained point
+// beyond the wall. Exact wall distances after the step for every constrained point (rep's penetration);
+// a point that was not constrained could only reach the wall by moving more than its swept margin,
+// which the next step's detection reports (it measures every active point).
+std::string divergence(const WireModel& model, const VesselScene* scene, WireState& state,
+                       const StepWorkspace& ws, StepReport& rep) {
+  const int n = model.nodes, k = ws.sys.first_free, nf = n - k;
+  for (int i = k; i < n; ++i) {
+    if (!state.x[i].allFinite() || !state.v[i].allFinite() || !state.w[i].allFinite() ||
+        !state.q[i].coeffs().allFinite())
+      return "NaN in the wire state at node " + std::to_string(i) + " (t = " + std::to_string(state.time) + " s)";
+    if (state.v[i].norm() > model.params.max_speed_mm_per_s)
+      return "exploding velocity: node " + std::to_string(i) + " moves at " + std::to_string(state.v[i].norm()) +
+             " mm/s (t = " + std::to_string(state.time) + " s)";
+  }
+  if (!(rep.energy <= model.energy_limit))
+    return "exploding energy: " + std::to_string(rep.energy) + " mN mm exceeds the limit " +
+           std::to_string(model.energy_limit) + " (t = " + std::to_string(state.time) + " s)";
+  if (scene && nf > 0) {
+    double worst = 0;
+    int worst_point = -1;
+    for (const ContactPoint& c : ws.contacts) {
+      const Eigen::Vector3d p = contact_point_position(model, state.x, c.point);
+      const WallDistance wd = cached_wall_distance(model, *scene, state, c.point, p, model.radius_mm);
+      rep.max_penetration_mm = std::max(rep.max_penetration_mm, model.radius_mm - wd.signed_distance);
+      if (-wd.signed_distance > worst) {
+        worst = -wd.signed_distance;
+        worst_point = c.point;
+      }
+    }
+    if (worst > model.params.divergence_margin_mm)
+      return "wire point " + std::to_string(worst_point) + " is " + std::to_string(worst) +
+             " mm outside the vessel wall (t = " + std::to_string(state.time) + " s)";
+  }
+  return "";
+}
+
+// One integration sub-step of length h, in the stages above. With `may_split`, returns before changing
+// the wire's motion (with `split` = true) when a node would travel more than kMaxSubstepTravelMm.
 StepReport substep(const WireModel& model, const VesselScene* scene, const Control& control, WireState& state,
                    double h, bool may_split, bool& split) {
   split = false;
@@ -70,169 +245,28 @@ StepReport substep(const WireModel& model, const VesselScene* scene, const Contr
     return fail(state, rep, "the state diverged earlier (" + state.diverged + "); reset it");
 
   thread_local StepWorkspace ws;
-  const double dt = h;
-  const double push = control.push_mm_per_s;
-  const double rotate = control.rotate_rad_per_s;
+  const double dt = h, push = control.push_mm_per_s, rotate = control.rotate_rad_per_s;
   auto clock = std::chrono::steady_clock::now();
-
-  // Assemble the linearised implicit Euler system of the free nodes (Eq. 1).
-  assemble_system(model, state, push, rotate, dt, ws.sys);
-  const int k = ws.sys.first_free;
-  const int nf = n - k;
-  rep.free_nodes = nf;
-  rep.timings.assemble_s = seconds_since(clock);
-
-  // Free motion.
-  if (ws.dv.size() < 6 * n) ws.dv.resize(6 * n);
-  auto dv = ws.dv.head(6 * nf);
-  if (nf > 0) {
-    if (!factor_block_tridiagonal(ws.sys.a, ws.factor))
-      return fail(state, rep, "the implicit system is not positive definite (degenerate wire geometry)");
-    dv = ws.sys.rhs.head(6 * nf);
-    solve_block_tridiagonal(ws.sys.a, ws.factor, dv);
-  }
-  rep.timings.solve_s = seconds_since(clock);
-
-  // Contacts at the start of the step, linearised there (Eq. 2), with the free-motion velocities.
+  if (!free_motion(model, state, push, rotate, dt, ws, rep, clock))
+    return fail(state, rep, "the implicit system is not positive definite (degenerate wire geometry)");
   std::fill(state.contact_force.begin(), state.contact_force.end(), Eigen::Vector3d::Zero());
-  if (scene && nf > 0) {
-    ws.v_contact.resize(n);
-    for (int i = 0; i < n; ++i)
-      ws.v_contact[i] = i < k ? Eigen::Vector3d(push * state.direction)
-                              : Eigen::Vector3d(state.v[i] + dv.segment<3>(6 * (i - k)));
-    double outside = 0;
-    detect_contacts(model, *scene, state, ws.v_contact, dt, ws.contacts, outside);
-    rep.contacts = static_cast<int>(ws.contacts.size());
-    rep.timings.detect_s = seconds_since(clock);
-    if (outside > model.params.divergence_margin_mm)
-      return fail(state, rep, "the wire is " + std::to_string(outside) + " mm outside the vessel wall (t = " +
-                                  std::to_string(state.time) + " s)");
-    if (!ws.contacts.empty()) {
-      const double mu = model.params.friction;
-      const int iters = model.params.contact_iterations;
-      ws.cws.lever = model.params.friction_torque ? model.radius_mm : 0.0;
-      if (ws.cws.lever > 0)  // the surface point's slip needs the free angular velocity too
-        for (ContactPoint& c : ws.contacts) {
-          c.w_free = c.wa * (state.w[c.node_a] + dv.segment<3>(6 * (c.node_a - k) + 3));
-          if (c.node_b >= 0) c.w_free += c.wb * (state.w[c.node_b] + dv.segment<3>(6 * (c.node_b - k) + 3));
-        }
-      prepare_contact_compliance(ws.sys.a, ws.factor, k, ws.contacts, ws.cws);
-      // Warm start from the previous sub-step's normal impulses of the same points.
-      const int m = static_cast<int>(ws.contacts.size());
-      if (static_cast<int>(state.contact_impulse.size()) != contact_point_count(model))
-        state.contact_impulse.assign(contact_point_count(model), 0.0);
-      if (ws.cws.impulse.size() < 3 * m) ws.cws.impulse.conservativeResize(3 * m);
-      for (int c = 0; c < m; ++c) ws.cws.impulse[3 * c] = state.contact_impulse[ws.contacts[c].point];
-      ContactSolveResult cr = solve_contact_impulses(ws.contacts, dt, mu, iters, true, ws.cws);
-      contact_velocity_change(ws.sys.a, ws.factor, ws.contacts, ws.cws);
-      // Second pass with each contact re-linearised at the middle of its constrained motion: the wall
-      // normal there makes g(x1) ~ g(x0) + n_mid . (x1 - x0) second-order accurate, so a wire pressed on
-      // a curved wall does not chatter sideways between the tangent planes at its start and end points.
-      double turned = 0;
-      for (ContactPoint& c : ws.contacts) {
-        Eigen::Vector3d v_end = c.v_free + c.wa * ws.cws.h_t_p.segment<3>(6 * (c.node_a - k));
-        if (c.node_b >= 0) v_end += c.wb * ws.cws.h_t_p.segment<3>(6 * (c.node_b - k));
-        const Eigen::Vector3d mid = contact_point_position(model, state.x, c.point) + 0.5 * dt * v_end;
-        const double need = model.radius_mm + model.params.contact_margin_mm + dt * v_end.norm();
-        // Exact to the cutoff: a wall a little beyond `need` at mid-motion still gives this contact its normal.
-        // A moving wall is taken at mid-motion too, seen from its shape at the start of the step: the point
-        // is carried back by the wall's mean velocity over the sub-step (half of its travel), which is the
-        // same query for a translating wall and differs by second-order terms otherwise (the wall's
-        // acceleration, h^2 a / 8, and its strain rate times h / 2: of order 1e-4 rad for the coronary field
-        // at 100 bpm, against the 4e-3 rad that trigger a second solve). It saves evaluating the triangles,
-        // normals and vertex normals at a third time per sub-step (t + h / 2, on top of t and t + h).
-        const Eigen::Vector3d seen = scene->motion ? Eigen::Vector3d(mid - 0.5 * dt * c.v_wall) : mid;
-        const WallDistance wd = cached_wall_distance(model, *scene, state, c.point, seen, need, true, state.time);
-        if (wd.triangle < 0 || !same_wall_side(c.n, wd.inward)) continue;
-        turned = std::max(turned, 1.0 - wd.inward.dot(c.n));
-        c.n = wd.inward;
-        c.t1 = c.n.unitOrthogonal();
-        c.t2 = c.n.cross(c.t1);
-      }
-      if (turned > 1e-5) {  // a normal turned by more than ~0.25 degrees: solve again with the new ones
-        cr = solve_contact_impulses(ws.contacts, dt, mu, iters, true, ws.cws);
-        contact_velocity_change(ws.sys.a, ws.factor, ws.contacts, ws.cws);
-      }
-      dv += ws.cws.h_t_p.head(6 * nf);
-      std::fill(state.contact_impulse.begin(), state.contact_impulse.end(), 0.0);
-      for (int c = 0; c < m; ++c) state.contact_impulse[ws.contacts[c].point] = ws.cws.impulse[3 * c];
-      rep.contact_iterations = cr.iterations;
-      for (std::size_t c = 0; c < ws.contacts.size(); ++c) {
-        const ContactPoint& cp = ws.contacts[c];
-        const Eigen::Vector3d f = (cp.n * ws.cws.impulse[3 * c] + cp.t1 * ws.cws.impulse[3 * c + 1] +
-                                   cp.t2 * ws.cws.impulse[3 * c + 2]) /
-                                  dt;
-        state.contact_force[cp.node_a] += cp.wa * f;
-        if (cp.node_b >= 0) state.contact_force[cp.node_b] += cp.wb * f;
-      }
-    }
-    rep.timings.constraints_s = seconds_since(clock);
+  if (scene && rep.free_nodes > 0)
+    if (const std::string problem = constrain_contacts(model, *scene, state, push, dt, ws, rep, clock); !problem.empty())
+      return fail(state, rep, problem);
+  if (may_split && scene && travels_too_far(model, state, ws, dt)) {  // free space has no contacts to linearise
+    split = true;
+    return rep;
   }
-
-  if (may_split && scene) {  // free space has no contacts to linearise
-    double travel = 0;
-    for (int i = k; i < n; ++i) travel = std::max(travel, (state.v[i] + dv.segment<3>(6 * (i - k))).norm());
-    if (dt * travel > kMaxSubstepTravelMm) {
-      split = true;
-      return rep;
-    }
-  }
-
-  // Integrate the free nodes (semi-implicit: positions with the new velocities).
-  double kinetic = 0;
-  for (int i = k; i < n; ++i) {
-    state.v[i] += dv.segment<3>(6 * (i - k));
-    state.w[i] += dv.segment<3>(6 * (i - k) + 3);
-    state.x[i] += dt * state.v[i];
-    state.q[i] = (Eigen::Quaterniond(so3_exp(dt * state.w[i])) * state.q[i]).normalized();
-    if (model.params.per_axis_rotational_inertia)
-      kinetic += 0.5 * model.mass[i] * state.v[i].squaredNorm() +
-                 0.5 * state.w[i].dot(node_rotational_inertia(model, i, state.q[i].toRotationMatrix()) * state.w[i]);
-    else
-      kinetic += 0.5 * model.mass[i] * state.v[i].squaredNorm() + 0.5 * model.rot_inertia[i] * state.w[i].squaredNorm();
-  }
-  // Drive the introducer part.
-  state.inserted_length_mm = std::clamp(state.inserted_length_mm + dt * push, 0.0, model.params.length_mm);
-  state.proximal_rotation_rad += dt * rotate;
-  place_held_nodes(model, state, push, rotate);
-  state.time += dt;
-  ++state.steps;
+  const double kinetic = integrate(model, state, push, rotate, dt, ws);
   rep.energy = ws.sys.elastic_energy + kinetic;
-
-  // Divergence checks.
-  for (int i = k; i < n; ++i) {
-    if (!state.x[i].allFinite() || !state.v[i].allFinite() || !state.w[i].allFinite() ||
-        !state.q[i].coeffs().allFinite())
-      return fail(state, rep, "NaN in the wire state at node " + std::to_string(i) + " (t = " +
-                                  std::to_string(state.time) + " s)");
-    if (state.v[i].norm() > model.params.max_speed_mm_per_s)
-      return fail(state, rep, "exploding velocity: node " + std::to_string(i) + " moves at " +
-                                  std::to_string(state.v[i].norm()) + " mm/s (t = " + std::to_string(state.time) + " s)");
-  }
-  if (!(rep.energy <= model.energy_limit))
-    return fail(state, rep, "exploding energy: " + std::to_string(rep.energy) + " mN mm exceeds the limit " +
-                                std::to_string(model.energy_limit) + " (t = " + std::to_string(state.time) + " s)");
-  if (scene && nf > 0) {
-    // Exact wall distances after the step for every constrained point; a point that was not constrained
-    // could only reach the wall by moving more than its swept margin, which the next step's detection
-    // reports (it measures every active point).
-    double worst = 0;
-    int worst_point = -1;
-    for (const ContactPoint& c : ws.contacts) {
-      const Eigen::Vector3d p = contact_point_position(model, state.x, c.point);
-      const WallDistance wd = cached_wall_distance(model, *scene, state, c.point, p, model.radius_mm);
-      rep.max_penetration_mm = std::max(rep.max_penetration_mm, model.radius_mm - wd.signed_distance);
-      if (-wd.signed_distance > worst) {
-        worst = -wd.signed_distance;
-        worst_point = c.point;
-      }
-    }
-    if (worst > model.params.divergence_margin_mm)
-      return fail(state, rep, "wire point " + std::to_string(worst_point) + " is " + std::to_string(worst) +
-                                  " mm outside the vessel wall (t = " + std::to_string(state.time) + " s)");
-  }
+  if (const std::string problem = divergence(model, scene, state, ws, rep); !problem.empty())
+    return fail(state, rep, problem);
   return rep;
 }
+
+}  // namespace
+
+namespace {
 
 void accumulate(StepReport& total, const StepReport& rep) {
   total.ok = rep.ok;

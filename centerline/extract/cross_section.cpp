@@ -51,10 +51,12 @@ CrossSection fit_cross_section(const VesselWall& wall, const Eigen::Vector3d& p,
     nearest = std::min(nearest, d);
     farthest = std::max(farthest, d);
     squares += (d - r) * (d - r);
-    const double a = std::atan2(h.y() - c.y(), h.x() - c.x());
-    const Eigen::Vector3d row(1.0, std::cos(2 * a), std::sin(2 * a));
-    oval_AtA += row * row.transpose();
-    oval_Atb += row * d;
+    if (wall_noise > 0) {  // only a rough wall's sections are judged by their oval (below)
+      const double a = std::atan2(h.y() - c.y(), h.x() - c.x());
+      const Eigen::Vector3d row(1.0, std::cos(2 * a), std::sin(2 * a));
+      oval_AtA += row * row.transpose();
+      oval_Atb += row * d;
+    }
   }
   out.roughness = std::sqrt(squares / static_cast<double>(hits.size())) / r;
   out.centre = p + c.x() * u + c.y() * v;

@@ -111,6 +111,7 @@ int main(int argc, char** argv) {
                             {"seconds_intake_cpu", intake_cpu},
                             {"seconds_file_to_targets_cpu", intake_cpu + median.second},
                             {"mcf_faces", stats.skeleton_faces},
+                            {"mcf_passes", stats.skeleton_passes},
                             {"seconds_wall", median.first},
                             {"seconds_cpu", median.second},
                             {"seconds_prepare", stats.seconds_prepare},

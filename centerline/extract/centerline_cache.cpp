@@ -40,7 +40,7 @@ std::string centerline_cache_key(const std::string& mesh_path, double scale, con
   std::ostringstream opt;
   opt.precision(17);
   opt << "|" << kCenterlinePipelineVersion << "|" << scale << "|" << o.spacing << "|" << o.edges_per_radius << "|"
-      << o.max_skeleton_faces << "|" << o.spur_factor << "|" << o.merge_factor << "|" << o.smoothing_iterations << "|";
+      << o.max_skeleton_faces << "|" << o.edges_around_thinnest << "|" << o.spur_factor << "|" << o.merge_factor << "|" << o.smoothing_iterations << "|";
   if (o.inlet) opt << o.inlet->x() << "," << o.inlet->y() << "," << o.inlet->z();
   const std::string tail = opt.str();
   mix(tail.data(), tail.size());

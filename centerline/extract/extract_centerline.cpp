@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <queue>
 #include <sstream>
 #include <stdexcept>
@@ -40,6 +41,17 @@ double end_radius(const RefinedBranch& b, bool at_start) {
   return median(r);
 }
 
+// The vessel radius of the thinnest chain of `tree`: the smallest median wall distance of a chain's points.
+double thinnest_chain_radius(const SkeletonTree& tree, const VesselWall& wall) {
+  double thinnest = std::numeric_limits<double>::infinity();
+  for (const auto& c : tree.chains) {
+    std::vector<double> r;
+    for (const auto& p : c.points) r.push_back(wall.distance(p));
+    thinnest = std::min(thinnest, median(r));
+  }
+  return thinnest;
+}
+
 }  // namespace
 
 CenterlineGraph extract_centerline(const TriangleMesh& mesh, const CenterlineOptions& opt, CenterlineStats* stats_out) {
@@ -75,28 +87,42 @@ CenterlineGraph extract_centerline(const ClosedSurface& closed, const Centerline
   }
   // Edge length tied to the radius, but never so short that MCF gets more than
   // `max_skeleton_faces` (an equilateral triangle of edge e has area 0.433 e^2).
-  const double edge = std::max(stats.mean_radius / opt.edges_per_radius,
-                               std::sqrt(closed.area / (0.433 * std::max(1000, opt.max_skeleton_faces))));
-  const TriangleMesh coarse = remesh_surface(closed.mesh, edge);
-  stats.skeleton_faces = coarse.F.rows();
+  const double finest = std::sqrt(closed.area / (0.433 * std::max(1000, opt.max_skeleton_faces)));
+  double edge = std::max(stats.mean_radius / opt.edges_per_radius, finest);
   stats.seconds_prepare = seconds_since(t0);
 
-  // 3. MCF skeleton.
-  t0 = std::chrono::steady_clock::now();
-  const RawSkeleton raw = mcf_skeleton(coarse);
-  stats.seconds_skeleton = seconds_since(t0);
-
-  // 4. Clean tree of chains; the wall of the (un-remeshed) closed input is the reference.
-  t0 = std::chrono::steady_clock::now();
+  // 3-4. MCF skeleton of the remeshed surface, cleaned into a tree of chains; the wall of the
+  // (un-remeshed) closed input is the reference.
   const VesselWall wall(closed.mesh);
   std::vector<Eigen::Vector3d> caps;
   for (const auto& c : closed.caps) caps.push_back(c.centre);
   SkeletonCleanup cleanup;
   cleanup.spur_factor = opt.spur_factor;
   cleanup.merge_factor = opt.merge_factor;
-  SkeletonTree tree =
-      clean_skeleton(raw, [&](const Eigen::Vector3d& p) { return wall.distance(p); }, caps, cleanup);
-  if (tree.chains.empty()) throw std::runtime_error("the skeleton has no branch");
+  const auto skeleton_tree = [&] {
+    t0 = std::chrono::steady_clock::now();
+    const TriangleMesh coarse = remesh_surface(closed.mesh, edge);
+    stats.skeleton_faces = coarse.F.rows();
+    stats.seconds_prepare += seconds_since(t0);
+    t0 = std::chrono::steady_clock::now();
+    const RawSkeleton raw = mcf_skeleton(coarse);
+    stats.seconds_skeleton += seconds_since(t0);
+    SkeletonTree tree =
+        clean_skeleton(raw, [&](const Eigen::Vector3d& p) { return wall.distance(p); }, caps, cleanup);
+    if (tree.chains.empty()) throw std::runtime_error("the skeleton has no branch");
+    return tree;
+  };
+  SkeletonTree tree = skeleton_tree();
+  // A branch far thinner than the mean radius (the great vessels off an aortic arch: 2.5 times) gets
+  // one or two edges across at that edge length, and MCF blurs its origin into its neighbour's.
+  const double thin = thinnest_chain_radius(tree, wall);
+  const double fine = std::max(2 * M_PI * thin / opt.edges_around_thinnest, finest);
+  if (fine < edge) {
+    edge = fine;
+    tree = skeleton_tree();
+    stats.skeleton_passes = 2;
+  }
+  t0 = std::chrono::steady_clock::now();
 
   // 6 (before 5: refinement does not depend on direction). Terminal ends are free.
   BranchRefinement refinement;

@@ -17,6 +17,8 @@ struct CenterlineOptions {
   double spacing = 0.5;                  // output point spacing along branches (mm)
   double edges_per_radius = 2.0;         // remeshing before MCF: edge length = mean radius / this,
   int max_skeleton_faces = 10000;        //   or longer so that MCF gets at most about this many faces
+  double edges_around_thinnest = 8.0;    // remeshed again finer (down to that cap) when the first skeleton's
+                                         //   thinnest branch gets fewer edges round its circumference
   double spur_factor = 2.0;              // terminal chains shorter than this * radius are spurs
   double merge_factor = 1.0;             // junctions closer than this * radius become one bifurcation
   int smoothing_iterations = 4;          // Laplacian passes on each branch after re-centring
@@ -25,6 +27,7 @@ struct CenterlineOptions {
 struct CenterlineStats {
   long input_faces = 0;     // faces of the given mesh
   long skeleton_faces = 0;  // faces after remeshing, what MCF ran on
+  int skeleton_passes = 1;  // 2: remeshed finer for a thin branch (options.edges_around_thinnest)
   int capped_holes = 0, dropped_components = 0;
   double mean_radius = 0.0;  // 2 * volume / area of the closed surface (mm)
   double seconds_prepare = 0, seconds_skeleton = 0, seconds_graph = 0;
@@ -38,7 +41,9 @@ struct CenterlineStats {
 //  1. close_surface: repair, drop islands, cap holes (their centres are terminal
 //     candidates), alpha-wrap what cheap repairs cannot close, orient outwards;
 //  2. remesh_surface to edges of mean radius / edges_per_radius, so MCF cost depends on
-//     the vessel size rather than on the input tessellation;
+//     the vessel size rather than on the input tessellation; once more, finer, when the first
+//     skeleton (3-4) has a branch with fewer than edges_around_thinnest edges round it (an aortic
+//     arch: the mean radius is the aorta's, the great vessels are 2.5 times thinner);
 //  3. mcf_skeleton (its node positions; correspondence centroids scatter when few
 //     surface vertices collapse onto a node, so they are not used);
 //  4. clean_skeleton: prune spurs, merge junction clusters into single bifurcations;

@@ -113,6 +113,27 @@ bool prune_one_spur(Work& w, const std::function<double(const Eigen::Vector3d&)>
   return true;
 }
 
+// The radius of the thinnest arm at junction v but chain `link`: each arm's median wall distance over
+// its points `from`..`to` away from v (past the lumen the junction sits in; an arm that never gets that
+// far: its far end's).
+double thinnest_other_arm(const Work& w, int v, size_t link, double from, double to,
+                          const std::function<double(const Eigen::Vector3d&)>& radius_at) {
+  double thinnest = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < w.chains.size(); ++i) {
+    const auto& c = w.chains[i];
+    if (i == link || (c.a != v && c.b != v)) continue;
+    std::vector<double> r;
+    for (const auto& p : c.points) {
+      const double d = (p - w.node[v]).norm();
+      if (d >= from && d <= to) r.push_back(radius_at(p));
+    }
+    if (r.empty()) r.push_back(radius_at(c.a == v ? c.points.back() : c.points.front()));
+    std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
+    thinnest = std::min(thinnest, r[r.size() / 2]);
+  }
+  return thinnest;
+}
+
 bool merge_one_junction_pair(Work& w, const std::function<double(const Eigen::Vector3d&)>& radius_at,
                              const SkeletonCleanup& o) {
   const auto deg = w.degree();
@@ -123,10 +144,16 @@ bool merge_one_junction_pair(Work& w, const std::function<double(const Eigen::Ve
     if (c.a == c.b || deg[c.a] < 3 || deg[c.b] < 3) continue;
     const double length = polyline_length(c.points);
     const Eigen::Vector3d mid = 0.5 * (w.node[c.a] + w.node[c.b]);
-    if (length < o.merge_factor * radius_at(mid) && length < best_length) {
-      best = static_cast<int>(i);
-      best_length = length;
-    }
+    const double r = radius_at(mid);
+    if (length >= o.merge_factor * r || length >= best_length) continue;
+    // Two thin side branches of a wide vessel (the great vessels off the aortic arch) can leave closer
+    // than the vessel's radius and still be two openings: they are one junction only when their
+    // openings overlap, as merge_close_junctions decides once the junctions are re-centred.
+    const double thin_a = thinnest_other_arm(w, c.a, i, r, 3 * r, radius_at);
+    const double thin_b = thinnest_other_arm(w, c.b, i, r, 3 * r, radius_at);
+    if (length >= o.merge_factor * (thin_a + thin_b)) continue;
+    best = static_cast<int>(i);
+    best_length = length;
   }
   if (best < 0) return false;
   const SkeletonChain c = w.chains[best];

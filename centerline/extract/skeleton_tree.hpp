@@ -22,7 +22,8 @@ struct SkeletonTree {
 
 struct SkeletonCleanup {
   double spur_factor = 2.0;   // a terminal chain shorter than this * radius at its junction is a spur
-  double merge_factor = 1.0;  // junctions closer than this * local radius become one bifurcation
+  double merge_factor = 1.0;  // junctions closer than this * local radius become one bifurcation, if also
+                              // closer than this * the sum of their thinnest other arms' radii (openings overlap)
   double cap_factor = 2.0;    // a terminal within this * radius of a cap is a real end, never a spur
 };
 

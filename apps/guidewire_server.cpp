@@ -22,8 +22,8 @@ int main(int argc, char** argv) {
   CLI::App app{"Guidewire navigation environment server (JSON lines over TCP)"};
   gw::ServerOptions options;
   std::string anatomies = "train", index = gw::default_anatomy_index(), wire_json, control_mode = "auto",
-              omega_plane = gw::omega_plane_name(gw::TaskConfig{}.omega_plane),
-              junctions = gw::junction_model_name(gw::TaskConfig{}.junctions),
+              omega_plane = gw::omega_plane_name(gw::TaskConfig{}.observation.omega_plane),
+              junctions = gw::junction_model_name(gw::TaskConfig{}.observation.junctions),
               task_scale = gw::task_scale_name(gw::TaskConfig{}.task_scale);
   gw::TaskConfig config;
   app.add_option("--port", options.port, "TCP port; 0 picks a free one (printed as the first stdout line)")->required();
@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
   app.add_option("--omega-plane", omega_plane,
                  "omega's plane: approach (obs/2) or correct_branch (the paper's, obs/1)")
       ->capture_default_str();
-  app.add_flag("--omega-side", config.omega_side,
+  app.add_flag("--omega-side", config.observation.omega_side,
                "also observe omega's sine, on which side of the wrong branch the tip bends (layout obs/3; "
                "needs --omega-plane approach)");
   app.add_option("--junctions", junctions,
@@ -80,10 +80,10 @@ int main(int argc, char** argv) {
 
   try {
     config.control_mode = gw::parse_control_mode(control_mode);
-    config.omega_plane = gw::parse_omega_plane(omega_plane);
-    config.junctions = gw::parse_junction_model(junctions);
+    config.observation.omega_plane = gw::parse_omega_plane(omega_plane);
+    config.observation.junctions = gw::parse_junction_model(junctions);
     config.task_scale = gw::parse_task_scale(task_scale);
-    gw::observation_layout(config);  // refuses omega_side in the paper's plane, naming why
+    config.observation.name();  // refuses omega_side in the paper's plane, naming why
     const gw::WireParams wire = wire_json.empty() ? gw::default_wire_params() : gw::load_wire_params(wire_json);
     std::vector<gw::Anatomy> loaded = gw::load_indexed_anatomies(anatomies, index);
     for (gw::Anatomy& a : loaded) gw::apply_heart_settings(a, heart);  // no-op without --heart-rate / --motion

@@ -121,7 +121,7 @@ int main(int argc, char** argv) {
     // Fail on the policy before the simulation starts: a missing or mismatched file is a user error.
     auto make_controller = [&] { return gw::make_controller(controller_kind, policy); };
     gw::TaskConfig config;
-    config.junctions = gw::parse_junction_model(junctions);
+    config.observation.junctions = gw::parse_junction_model(junctions);
     config.task_scale = gw::parse_task_scale(task_scale);
     make_controller()->adapt(config);  // an actor trained on the paper's omega gets the paper's omega
     config.intermediate_target_mm = intermediate_target_mm;

@@ -16,11 +16,11 @@ class PolicyController final : public Controller {
  public:
   explicit PolicyController(const std::string& path) : actor_(load_actor(path)) {
     try {
-      apply_observation_layout(actor_.obs_layout(), layout_);
+      layout_ = ObservationLayout::parse(actor_.obs_layout());
     } catch (const std::invalid_argument& e) {
       throw std::runtime_error(path + ": the actor was trained on an unknown observation: " + e.what());
     }
-    size_ = observation_size(layout_);
+    size_ = layout_.size();
     if (actor_.obs_size() != size_)
       throw std::runtime_error(path + ": the actor takes " + std::to_string(actor_.obs_size()) + " observations, its layout " +
                                actor_.obs_layout() + " has " + std::to_string(size_));
@@ -32,11 +32,11 @@ class PolicyController final : public Controller {
   }
   const std::string& name() const override { return name_; }
   void adapt(TaskConfig& config) const override {
-    config.omega_plane = layout_.omega_plane;
-    config.omega_side = layout_.omega_side;
+    config.observation.omega_plane = layout_.omega_plane;
+    config.observation.omega_side = layout_.omega_side;
     // An obs/4 actor needs combined junctions; an obs/3 one runs with either (the entries mean the same
     // on two-way forks), as the user set it.
-    if (layout_.junctions == JunctionModel::kCombined) config.junctions = JunctionModel::kCombined;
+    if (layout_.junctions == JunctionModel::kCombined) config.observation.junctions = JunctionModel::kCombined;
   }
   double act(const Observation& obs) override {
     for (int i = 0; i < size_; ++i) obs_[i] = static_cast<float>(obs[static_cast<std::size_t>(i)]);
@@ -47,7 +47,7 @@ class PolicyController final : public Controller {
  private:
   std::string name_ = "sac-policy";
   ActorMLP actor_;
-  TaskConfig layout_;  // only omega_plane, omega_side and junctions are read: the actor's observation layout
+  ObservationLayout layout_;  // the actor's, from its JSON
   int size_ = 0;
   Eigen::VectorXf obs_, action_;
 };

@@ -272,7 +272,7 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
       TaskConfig base_config;
       base_config.intermediate_target_mm = o.intermediate_target_mm;
       base_config.push_mm_per_s = o.push_mm_per_s;
-      base_config.junctions = o.junctions;
+      base_config.observation.junctions = o.junctions;
       const NavigationTask default_task = make_navigation_task(base_config, wire, anatomies);
       const auto [first, end] = shard_range(row);
       const std::vector<EpisodeRequest> all_requests = row_requests(default_task, end, o.seed);
@@ -292,7 +292,8 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
         make()->adapt(config);  // an actor trained on the paper's omega (obs/1) is evaluated with it
         config.recovery_attempts = o.recovery_attempts;  // the controllers' columns only: probes stay strict
         std::optional<NavigationTask> adapted;
-        if (config.omega_plane != default_task.config.omega_plane || config.junctions != default_task.config.junctions ||
+        if (config.observation.omega_plane != default_task.config.observation.omega_plane ||
+            config.observation.junctions != default_task.config.observation.junctions ||
             config.recovery_attempts > 0)
           adapted = make_navigation_task(config, wire, anatomies);
         const NavigationTask& task = adapted ? *adapted : default_task;

@@ -61,7 +61,7 @@ std::uint64_t next_seed(std::uint64_t& stream) {
 std::string spec_json(const NavigationTask& task) {
   Observation low, high;
   observation_bounds(task.config, low, high);
-  const int size = observation_size(task.config);
+  const int size = task.config.observation.size();
   json names = json::array();
   for (int i = 0; i < size; ++i) names.push_back(observation_names()[static_cast<size_t>(i)]);
   json anatomies = json::array();
@@ -75,7 +75,7 @@ std::string spec_json(const NavigationTask& task) {
   const TaskConfig& c = task.config;
   json j = {{"ok", true},
             {"protocol", kProtocolVersion},
-            {"obs_layout", observation_layout(c)},
+            {"obs_layout", c.observation.name()},
             {"observation_space",
              {{"shape", {size}}, {"low", observation_json(low, size)}, {"high", observation_json(high, size)},
               {"names", names}}},
@@ -88,9 +88,9 @@ std::string spec_json(const NavigationTask& task) {
               {"push_mm_per_s", c.push_mm_per_s},
               {"max_rotation_rad_per_s", c.max_rotation_rad_per_s},
               {"control_mode", control_mode_name(c.control_mode)},
-              {"omega_plane", omega_plane_name(c.omega_plane)},
-              {"omega_side", c.omega_side},
-              {"junctions", junction_model_name(c.junctions)},
+              {"omega_plane", omega_plane_name(c.observation.omega_plane)},
+              {"omega_side", c.observation.omega_side},
+              {"junctions", junction_model_name(c.observation.junctions)},
               {"task_scale", task_scale_name(c.task_scale)},
               {"reward", {{"omega_centre", c.reward.omega_centre}, {"omega_slope", c.reward.omega_slope}}},
               {"roll_disturbance", {{"probability", c.roll_disturbance_probability},
@@ -178,7 +178,7 @@ std::string EnvSession::handle(const std::string& line, bool& close_connection) 
       info["max_steps"] = state_.max_steps;
       info["start_rotation_rad"] = state_.start_rotation_rad;
       info["start_tilt_rad"] = state_.start_tilt_rad;
-      return json{{"ok", true}, {"obs", observation_json(state_.obs, observation_size(task_.config))}, {"info", info}}.dump();
+      return json{{"ok", true}, {"obs", observation_json(state_.obs, task_.config.observation.size())}, {"info", info}}.dump();
     }
     if (cmd == "step") {
       const auto ait = req.find("action");
@@ -196,7 +196,7 @@ std::string EnvSession::handle(const std::string& line, bool& close_connection) 
       const StepOutcome out = step_episode(task_, state_, a, limits);
       if (out.info.time_limit) throw RequestError("step: " + out.info.problem + "; the episode is over, send reset");
       return json{{"ok", true},
-                  {"obs", observation_json(out.obs, observation_size(task_.config))},
+                  {"obs", observation_json(out.obs, task_.config.observation.size())},
                   {"reward", out.reward},
                   {"terminated", out.terminated},
                   {"truncated", out.truncated},

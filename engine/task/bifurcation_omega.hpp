@@ -1,6 +1,6 @@
 #pragma once
 // omega and omega_side (observation.hpp entries 9 and 11) of the tip against one bifurcation of the
-// course, with one or several wrong branches (TaskConfig::junctions, docs/junctions.md).
+// course, with one or several wrong branches (TaskConfig::observation.junctions, docs/junctions.md).
 #include <Eigen/Core>
 
 #include "engine/task/course.hpp"

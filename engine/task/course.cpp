@@ -20,7 +20,7 @@ Eigen::Vector3d child_direction(const Polyline& child, const Eigen::Vector3d& ce
 // when parallel to the normal.
 Eigen::Vector3d wrong_in_plane(const CourseBifurcation& cb, const Polyline& wrong, const TaskConfig& config) {
   const Eigen::Vector3d wd = child_direction(wrong, cb.centre, config.branch_direction_mm);
-  const bool paper = config.omega_plane == OmegaPlane::kCorrectBranch;
+  const bool paper = config.observation.omega_plane == OmegaPlane::kCorrectBranch;
   const Eigen::Vector3d& n = cb.omega_normal;
   const Eigen::Vector3d away = paper ? wd : Eigen::Vector3d(wd - cb.correct_direction);
   Eigen::Vector3d wp = away - away.dot(n) * n;
@@ -78,7 +78,7 @@ Course make_course(const CenterlineGraph& graph, const std::vector<Polyline>& br
     const Eigen::Vector3d before = polyline_point(course.line, std::max(0.0, cb.arc - config.branch_direction_mm));
     const Eigen::Vector3d approach = cb.centre - before;
     cb.approach_direction = approach.norm() > 1e-9 ? Eigen::Vector3d(approach.normalized()) : c;
-    cb.omega_normal = config.omega_plane == OmegaPlane::kCorrectBranch ? c : cb.approach_direction;
+    cb.omega_normal = config.observation.omega_plane == OmegaPlane::kCorrectBranch ? c : cb.approach_direction;
     // Paper: w itself. Approach plane: from the correct towards the wrong branch, as the rolled tip sees it.
     for (int w : pb.wrong_children) {
       cb.wrong_branches.push_back(w);
@@ -97,7 +97,7 @@ Course make_course(const CenterlineGraph& graph, const std::vector<Polyline>& br
   }
   // Closely spaced forks (JunctionModel::kCombined): a bifurcation also aims away from the wrong children
   // of those that follow within close_junction_diameters diameters of the vessel between them.
-  if (config.junctions == JunctionModel::kCombined) {
+  if (config.observation.junctions == JunctionModel::kCombined) {
     for (size_t k = 0; k < course.bifurcations.size(); ++k) {
       const double diameter =
           2.0 * radius_after_origin(graph.branches.at(static_cast<size_t>(path.bifurcations[k].correct_child)));

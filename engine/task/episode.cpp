@@ -117,7 +117,7 @@ void observe(const NavigationTask& task, EpisodeState& s, bool first) {
     const Eigen::Vector3d kappa = curvature_from_tangents(
         s.samples.tangent[0], s.samples.tangent[kTipSampleCount - 1], (kTipSampleCount - 1) * c.tip_sample_spacing_mm);
     const double rest = task.wire.params.tip_curvature_per_mm;
-    const OmegaReading reading = bifurcation_omega(b, kappa, rest, c.junctions);
+    const OmegaReading reading = bifurcation_omega(b, kappa, rest, c.observation.junctions);
     omega = reading.omega;
     side = reading.side;
   }

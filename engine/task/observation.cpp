@@ -13,50 +13,6 @@ const std::array<const char*, kObservationSize>& observation_names() {
   return names;
 }
 
-namespace {
-// omega_side is measured about the approach direction only: the paper's plane (normal to the correct
-// branch) is the one where omega is blind, and nothing was trained on that combination.
-// obs/4 is obs/3 with junctions combined (TaskConfig::junctions): the same entries, which mean the same on
-// a two-way fork with no fork close behind it.
-struct Layout {
-  const char* name;
-  OmegaPlane plane;
-  bool omega_side;
-  JunctionModel junctions;
-};
-constexpr Layout kLayouts[] = {{"guidewire-nav/obs/1", OmegaPlane::kCorrectBranch, false, JunctionModel::kSeparate},
-                               {"guidewire-nav/obs/2", OmegaPlane::kApproach, false, JunctionModel::kSeparate},
-                               {"guidewire-nav/obs/3", OmegaPlane::kApproach, true, JunctionModel::kSeparate},
-                               {"guidewire-nav/obs/4", OmegaPlane::kApproach, true, JunctionModel::kCombined}};
-}  // namespace
-
-const char* observation_layout(const TaskConfig& config) {
-  for (const Layout& l : kLayouts)
-    if (l.plane == config.omega_plane && l.omega_side == config.omega_side && l.junctions == config.junctions)
-      return l.name;
-  if (config.omega_side && config.omega_plane != OmegaPlane::kApproach)
-    throw std::invalid_argument("omega_side needs omega's plane 'approach' (no layout has it in the paper's plane)");
-  throw std::invalid_argument("combined junctions need omega's plane 'approach' and omega_side (layout obs/4)");
-}
-
-int observation_size(const TaskConfig& config) {
-  return config.omega_side ? kObservationSize : kPaperObservationSize;
-}
-
-void apply_observation_layout(const std::string& layout, TaskConfig& config) {
-  std::string known;
-  for (const Layout& l : kLayouts) {
-    if (layout == l.name) {
-      config.omega_plane = l.plane;
-      config.omega_side = l.omega_side;
-      config.junctions = l.junctions;
-      return;
-    }
-    known += std::string(known.empty() ? "" : ", ") + l.name;
-  }
-  throw std::invalid_argument("observation layout '" + layout + "' is not one of " + known);
-}
-
 void observation_bounds(const TaskConfig& config, Observation& low, Observation& high) {
   for (int i = 0; i < 2 * kThetaCount; ++i) {
     low[i] = -1.0;

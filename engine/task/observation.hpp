@@ -1,9 +1,9 @@
 #pragma once
 // The observation of paper 2.2.3, Omega = {theta_t, theta_{t-n dt}, lambda_t, lambda_{t-n dt}, a_t, omega, s},
 // as a fixed-size vector. Layouts "guidewire-nav/obs/1" (the paper's omega) and "guidewire-nav/obs/2"
-// (omega in the approach plane; TaskConfig::omega_plane) are the first 11 entries; "guidewire-nav/obs/3"
-// (TaskConfig::omega_side) is obs/2 plus a twelfth, omega's sine; "guidewire-nav/obs/4" is obs/3 with
-// junctions combined (TaskConfig::junctions: k-way junctions and closely spaced forks, docs/junctions.md):
+// (omega in the approach plane) are the first 11 entries; "guidewire-nav/obs/3" is obs/2 plus a twelfth,
+// omega's sine; "guidewire-nav/obs/4" is obs/3 with junctions combined (k-way junctions and closely spaced
+// forks, docs/junctions.md). The layout is TaskConfig::observation (observation_layout.hpp):
 //   [0..2]  theta_t      t_i . c_i, i = 1..3: unit wire tangent at 0, 2, 4 mm from the tip (t_i) against
 //                        the unit centerline tangent h = 4 mm ahead of that point's projection (c_i)
 //   [3..5]  theta_{t-n dt}  the same one env step earlier (n dt = frame_skip * dt)
@@ -41,18 +41,8 @@
 
 namespace gw {
 
-inline constexpr int kThetaCount = 3;
-// Every entry is computed on every step; a layout hands its first observation_size() entries to the actor.
-inline constexpr int kObservationSize = 2 * kThetaCount + 6;
-inline constexpr int kPaperObservationSize = kObservationSize - 1;  // obs/1, obs/2: without omega_side
-// The layout observations of `config` have: obs/1 (kCorrectBranch), obs/2 (kApproach), obs/3 (kApproach
-// with omega_side), obs/4 (obs/3 with JunctionModel::kCombined).
-const char* observation_layout(const TaskConfig& config);
-// How many leading entries that layout has: 11, or 12 for obs/3 and obs/4.
-int observation_size(const TaskConfig& config);
-// The inverse, for an actor's recorded layout: sets config's omega_plane, omega_side and junctions; throws
-// std::invalid_argument naming the known layouts.
-void apply_observation_layout(const std::string& layout, TaskConfig& config);
+// The entries an actor takes (its layout's size(), the first 11 or 12) and their names: ObservationLayout
+// (observation_layout.hpp, included through task_config.hpp).
 using Observation = std::array<double, kObservationSize>;
 
 namespace obs_index {

@@ -90,24 +90,4 @@ const char* task_scale_name(TaskScale scale) {
   return "auto";
 }
 
-OmegaPlane parse_omega_plane(const std::string& text) {
-  if (text == "correct_branch") return OmegaPlane::kCorrectBranch;
-  if (text == "approach") return OmegaPlane::kApproach;
-  throw std::invalid_argument("omega plane '" + text + "' is not one of correct_branch, approach");
-}
-
-const char* omega_plane_name(OmegaPlane plane) {
-  return plane == OmegaPlane::kCorrectBranch ? "correct_branch" : "approach";
-}
-
-JunctionModel parse_junction_model(const std::string& text) {
-  if (text == "separate") return JunctionModel::kSeparate;
-  if (text == "combined") return JunctionModel::kCombined;
-  throw std::invalid_argument("junction model '" + text + "' is not one of separate, combined");
-}
-
-const char* junction_model_name(JunctionModel model) {
-  return model == JunctionModel::kSeparate ? "separate" : "combined";
-}
-
 }  // namespace gw

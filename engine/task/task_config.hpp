@@ -3,6 +3,7 @@
 // its value. The task model (NavigationTask) holds one; episodes never change it.
 #include <string>
 
+#include "engine/task/observation_layout.hpp"
 #include "engine/task/reward.hpp"
 
 namespace gw {
@@ -12,18 +13,6 @@ enum class ControlMode {
   kAlways,             // every env step (training on single bifurcation patterns, paper 2.2.2)
   kNearBifurcation,    // only while the tip is within control_radius_mm of a bifurcation centre
   kAuto,               // kAlways when the path has at most one bifurcation, else kNearBifurcation
-};
-
-// How the wrong branches of a junction enter omega (observation.hpp; issue 41, docs/junctions.md).
-enum class JunctionModel {
-  kSeparate,  // each bifurcation on its own; with several wrong children omega is the largest (the most
-              // dangerous) one. The paper's task and every row of the results table
-  kCombined,  // a bifurcation also counts the wrong children of the bifurcations that follow it along the
-              // course within close_junction_diameters vessel diameters (closely spaced forks), and omega
-              // is measured against the mean of the wrong directions (a k-way junction: the tip aims
-              // away from all of them, reaching -1 where the max could not). Identical to kSeparate on a
-              // two-way fork with no fork close behind it; measured worse than kSeparate where two close forks' wrong
-              // branches lie on opposite sides (their mean cancels; results/junctions), so off by default
 };
 
 // How the task's lengths meet the vessel's size (issue 35; docs/vessel_scale.md).
@@ -38,16 +27,6 @@ enum class TaskScale {
             // an ostium "in the branch" (the child's centreline runs ~11 mm inside the aorta) and hand the
             // policy control ~16 mm before a fork whose centre lies on the axis (results/arch_wire)
   kAuto,    // kVessel when the inlet radius exceeds wide_vessel_radius_mm, else kFixed
-};
-
-// The plane omega is measured in (observation.hpp, omega).
-enum class OmegaPlane {
-  kCorrectBranch,  // paper 2.2.3: tip curvature and wrong direction w projected on the plane normal to the
-                   // correct branch c. Blind where c is ~90 deg off the approach: the tip's bend then
-                   // lies in that plane's normal and w_p ~ the approach axis, so omega ~ 0 for every roll
-  kApproach,       // curvature and (w - c) projected on the plane normal to the approach direction p (the
-                   // axis the proximal rotation rolls the tip bend around): -1 when the tip bends from the
-                   // wrong towards the correct branch. Equals kCorrectBranch's reading when c is along p
 };
 
 struct TaskConfig {
@@ -69,8 +48,8 @@ struct TaskConfig {
   double lookahead_mm = 4.0;             // h: centerline tangent c_i taken h ahead of each sample
   double branch_direction_mm = 6.0;      // c and w (omega) = directions from a bifurcation centre to
                                          // the points this far along the correct / wrong child
-  OmegaPlane omega_plane = OmegaPlane::kApproach;  // kCorrectBranch = the paper's definition (obs/1)
-  bool omega_side = false;               // layout obs/3: also hand the actor omega's sine (observation.hpp)
+  ObservationLayout observation;         // omega's plane, omega's sine, junctions (observation_layout.hpp);
+                                         // default obs/2, the paper's entries with omega in the approach plane
   double max_abs_speed_ratio = 5.0;      // s = v.c / push is clipped to +-this (bounded obs space)
   double max_lambda_ratio = 4.0;         // lambda_t / lambda_0 is clipped to [0, this]
   // --- Reward (reward.hpp) ---
@@ -141,8 +120,7 @@ struct TaskConfig {
   // wall_force_peak_total_mN / 1000): a wire pressed on the wall at 1.5 N (the vessel-rupture threshold
   // the safety figures use) for a step costs 1.5 x this. Off for the paper's column and the shipped actors.
   double reward_force_per_N = 0.0;
-  // --- Junctions beyond the two-way fork (issue 41; JunctionModel above) ---
-  JunctionModel junctions = JunctionModel::kSeparate;
+  // --- Junctions beyond the two-way fork (issue 41; observation.junctions) ---
   double close_junction_diameters = 2.0;  // kCombined: forks closer than this many diameters of the vessel
                                           // between them (the correct child's radius over its first 8 mm)
                                           // are aimed at together; the issue's "one to two diameters"
@@ -155,16 +133,8 @@ void check_task_config(const TaskConfig& config);
 ControlMode parse_control_mode(const std::string& text);
 const char* control_mode_name(ControlMode mode);
 
-// "separate" | "combined"; throws std::invalid_argument for anything else.
-JunctionModel parse_junction_model(const std::string& text);
-const char* junction_model_name(JunctionModel model);
-
 // "fixed" | "vessel" | "auto"; throws std::invalid_argument for anything else.
 TaskScale parse_task_scale(const std::string& text);
 const char* task_scale_name(TaskScale scale);
-
-// "correct_branch" | "approach"; throws std::invalid_argument for anything else.
-OmegaPlane parse_omega_plane(const std::string& text);
-const char* omega_plane_name(OmegaPlane plane);
 
 }  // namespace gw

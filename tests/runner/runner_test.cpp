@@ -151,19 +151,19 @@ static std::string write_actor(const fs::path& dir, const std::string& layout, i
 TEST_CASE("controllers: an actor gets the omega it was trained with, an unknown layout is refused", "[runner]") {
   const fs::path dir = scratch_dir("layouts");
   gw::TaskConfig config;
-  REQUIRE(config.omega_plane == gw::OmegaPlane::kApproach);
+  REQUIRE(config.observation.omega_plane == gw::OmegaPlane::kApproach);
   gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/1"))->adapt(config);
-  CHECK(config.omega_plane == gw::OmegaPlane::kCorrectBranch);
+  CHECK(config.observation.omega_plane == gw::OmegaPlane::kCorrectBranch);
   gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/2"))->adapt(config);
-  CHECK(config.omega_plane == gw::OmegaPlane::kApproach);
-  CHECK_FALSE(config.omega_side);
+  CHECK(config.observation.omega_plane == gw::OmegaPlane::kApproach);
+  CHECK_FALSE(config.observation.omega_side);
   gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/3", 12))->adapt(config);
-  CHECK(config.omega_side);
+  CHECK(config.observation.omega_side);
   gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/2"))->adapt(config);
-  CHECK_FALSE(config.omega_side);
-  config.omega_plane = gw::OmegaPlane::kCorrectBranch;
+  CHECK_FALSE(config.observation.omega_side);
+  config.observation.omega_plane = gw::OmegaPlane::kCorrectBranch;
   gw::make_controller("scripted-omega", "")->adapt(config);  // baselines leave the config alone
-  CHECK(config.omega_plane == gw::OmegaPlane::kCorrectBranch);
+  CHECK(config.observation.omega_plane == gw::OmegaPlane::kCorrectBranch);
   CHECK_THROWS_WITH(gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/0")),
                     Catch::Contains("guidewire-nav/obs/0") && Catch::Contains("guidewire-nav/obs/2"));
   // The input count must be the layout's: obs/3 has omega's sine as a twelfth entry.

@@ -73,7 +73,7 @@ TEST_CASE("server: spec describes spaces, protocol and layout", "[server]") {
 
 TEST_CASE("server: with omega_side the layout is obs/3 and every observation has omega's sine", "[server]") {
   gw::TaskConfig config;
-  config.omega_side = true;
+  config.observation.omega_side = true;
   const gw::NavigationTask task = y_task(config);
   RunningServer s(task);
   gwtest::RawClient c(s.server.port());

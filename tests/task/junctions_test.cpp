@@ -86,7 +86,7 @@ TEST_CASE("a 3-way junction in three azimuths: combined omega reaches -1 aiming 
       k_way_graph({exit_direction(tilt, 0.0), exit_direction(tilt, 2.0 * kPi / 3.0), exit_direction(tilt, 4.0 * kPi / 3.0)});
   const std::vector<gw::Polyline> lines = lines_of(g);
   gw::TaskConfig separate, combined;
-  combined.junctions = gw::JunctionModel::kCombined;
+  combined.observation.junctions = gw::JunctionModel::kCombined;
   const int target = target_on(g, 1);  // the exit at azimuth 0 (+x)
   const gw::CourseBifurcation bs = gw::make_course(g, lines, target, separate).bifurcations.at(0);
   const gw::CourseBifurcation bc = gw::make_course(g, lines, target, combined).bifurcations.at(0);
@@ -113,7 +113,7 @@ TEST_CASE("a planar trifurcation: the side exit aims away from both others, the 
   const gw::CenterlineGraph g = k_way_graph({exit_direction(tilt, kPi), Vector3d::UnitY(), exit_direction(tilt, 0.0)});
   const std::vector<gw::Polyline> lines = lines_of(g);
   gw::TaskConfig combined;
-  combined.junctions = gw::JunctionModel::kCombined;
+  combined.observation.junctions = gw::JunctionModel::kCombined;
   // Side exit (-x): both wrong exits lie towards +x, so the best bend is -x, at -1.
   const gw::CourseBifurcation side = gw::make_course(g, lines, target_on(g, 1), combined).bifurcations.at(0);
   CHECK(gw::bifurcation_omega(side, kRest * Vector3d(-1, 0, 0), kRest, gw::JunctionModel::kCombined).omega ==
@@ -137,7 +137,7 @@ TEST_CASE("a two-way fork reads the same with junctions separate and combined", 
   for (const gw::CenterlineGraph& g : {gwtest::y_graph(), gwtest::t_graph(), gwtest::two_level_tree()}) {
     const std::vector<gw::Polyline> lines = lines_of(g);
     gw::TaskConfig separate, combined;
-    combined.junctions = gw::JunctionModel::kCombined;
+    combined.observation.junctions = gw::JunctionModel::kCombined;
     for (const auto& t : g.targets) {
       const gw::Course cs = gw::make_course(g, lines, t.id, separate), cc = gw::make_course(g, lines, t.id, combined);
       REQUIRE(cs.bifurcations.size() == cc.bifurcations.size());
@@ -191,7 +191,7 @@ TEST_CASE("closely spaced forks: the first fork also aims away from the second's
     return g;
   };
   gw::TaskConfig separate, combined;
-  combined.junctions = gw::JunctionModel::kCombined;  // close: under 2 diameters = 8 mm
+  combined.observation.junctions = gw::JunctionModel::kCombined;  // close: under 2 diameters = 8 mm
   for (double gap : {5.0, 20.0}) {
     INFO("gap " << gap << " mm");
     const gw::CenterlineGraph g = graph(gap);
@@ -214,18 +214,17 @@ TEST_CASE("closely spaced forks: the first fork also aims away from the second's
 }
 
 TEST_CASE("layout obs/4 is obs/3 with combined junctions", "[task][junctions]") {
-  gw::TaskConfig c;
-  gw::apply_observation_layout("guidewire-nav/obs/4", c);
+  gw::ObservationLayout c = gw::ObservationLayout::parse("guidewire-nav/obs/4");
   CHECK(c.junctions == gw::JunctionModel::kCombined);
   CHECK(c.omega_side);
   CHECK(c.omega_plane == gw::OmegaPlane::kApproach);
-  CHECK(std::string(gw::observation_layout(c)) == "guidewire-nav/obs/4");
-  CHECK(gw::observation_size(c) == gw::kObservationSize);
-  gw::apply_observation_layout("guidewire-nav/obs/3", c);
+  CHECK(std::string(c.name()) == "guidewire-nav/obs/4");
+  CHECK(c.size() == gw::kObservationSize);
+  c = gw::ObservationLayout::parse("guidewire-nav/obs/3");
   CHECK(c.junctions == gw::JunctionModel::kSeparate);
   c.omega_side = false;
   c.junctions = gw::JunctionModel::kCombined;  // obs/2 with combined junctions: no such layout
-  CHECK_THROWS_WITH(gw::observation_layout(c), Catch::Contains("obs/4"));
+  CHECK_THROWS_WITH(c.name(), Catch::Contains("obs/4"));
   CHECK(gw::parse_junction_model("combined") == gw::JunctionModel::kCombined);
   CHECK_THROWS_WITH(gw::parse_junction_model("merged"), Catch::Contains("separate, combined"));
   gw::TaskConfig bad;

@@ -49,7 +49,7 @@ TEST_CASE("course through a Y bifurcation: directions, goals, control mode", "[t
   std::vector<gw::Polyline> lines;
   for (const auto& b : g.branches) lines.push_back(gw::make_polyline(b.points));
   gw::TaskConfig config;
-  config.omega_plane = gw::OmegaPlane::kCorrectBranch;  // the paper's omega (approach plane: next test)
+  config.observation.omega_plane = gw::OmegaPlane::kCorrectBranch;  // the paper's omega (approach plane: next test)
   // Target numbering: both leaves have the same length, tie broken by x: (-) first.
   const gw::Course c1 = gw::make_course(g, lines, 1, config);
   const gw::Course c2 = gw::make_course(g, lines, 2, config);
@@ -85,7 +85,7 @@ TEST_CASE("omega's approach plane sees a 90-degree side branch, the paper's plan
   const Vector3d bend_into(0.2, 0, 0), bend_away(-0.2, 0, 0), bend_across(0, 0, 0.2);
 
   gw::TaskConfig paper;
-  paper.omega_plane = gw::OmegaPlane::kCorrectBranch;
+  paper.observation.omega_plane = gw::OmegaPlane::kCorrectBranch;
   const gw::CourseBifurcation bp = gw::make_course(g, lines, side, paper).bifurcations.at(0);
   CHECK((bp.correct_direction - Vector3d(1, 0, 0)).norm() < 1e-9);
   REQUIRE(bp.wrong_in_plane.size() == 1);
@@ -93,7 +93,7 @@ TEST_CASE("omega's approach plane sees a 90-degree side branch, the paper's plan
     CHECK(gw::wrong_branch_alignment(k, bp.omega_normal, bp.wrong_in_plane[0], rest) == Approx(0.0).margin(1e-9));
 
   gw::TaskConfig approach;
-  approach.omega_plane = gw::OmegaPlane::kApproach;
+  approach.observation.omega_plane = gw::OmegaPlane::kApproach;
   const gw::CourseBifurcation ba = gw::make_course(g, lines, side, approach).bifurcations.at(0);
   CHECK((ba.approach_direction - Vector3d(0, 1, 0)).norm() < 1e-9);
   CHECK((ba.omega_normal - ba.approach_direction).norm() < 1e-12);
@@ -224,25 +224,22 @@ TEST_CASE("reward sigmoid can be shifted and steepened", "[task]") {
 
 TEST_CASE("observation layout is fixed and bounded", "[task]") {
   CHECK(gw::kObservationSize == 12);
-  gw::TaskConfig layout;
+  CHECK(std::string(gw::TaskConfig{}.observation.name()) == "guidewire-nav/obs/2");  // the task's default
+  gw::ObservationLayout layout;
   layout.omega_plane = gw::OmegaPlane::kCorrectBranch;
-  CHECK(std::string(gw::observation_layout(layout)) == "guidewire-nav/obs/1");
-  CHECK(gw::observation_size(layout) == 11);
+  CHECK(std::string(layout.name()) == "guidewire-nav/obs/1");
+  CHECK(layout.size() == 11);
   layout.omega_plane = gw::OmegaPlane::kApproach;
-  CHECK(std::string(gw::observation_layout(layout)) == "guidewire-nav/obs/2");
-  CHECK(gw::observation_size(layout) == 11);
+  CHECK(std::string(layout.name()) == "guidewire-nav/obs/2");
+  CHECK(layout.size() == 11);
   layout.omega_side = true;
-  CHECK(std::string(gw::observation_layout(layout)) == "guidewire-nav/obs/3");
-  CHECK(gw::observation_size(layout) == 12);
+  CHECK(std::string(layout.name()) == "guidewire-nav/obs/3");
+  CHECK(layout.size() == 12);
   layout.omega_plane = gw::OmegaPlane::kCorrectBranch;  // no layout has the sine in the paper's plane
-  CHECK_THROWS_WITH(gw::observation_layout(layout), Catch::Contains("approach"));
-  for (const char* name : {"guidewire-nav/obs/1", "guidewire-nav/obs/2", "guidewire-nav/obs/3"}) {
-    gw::TaskConfig round_trip;
-    gw::apply_observation_layout(name, round_trip);
-    CHECK(std::string(gw::observation_layout(round_trip)) == name);
-  }
-  gw::TaskConfig untouched;
-  CHECK_THROWS_WITH(gw::apply_observation_layout("guidewire-nav/obs/9", untouched),
+  CHECK_THROWS_WITH(layout.name(), Catch::Contains("approach"));
+  for (const char* name : {"guidewire-nav/obs/1", "guidewire-nav/obs/2", "guidewire-nav/obs/3"})
+    CHECK(std::string(gw::ObservationLayout::parse(name).name()) == name);
+  CHECK_THROWS_WITH(gw::ObservationLayout::parse("guidewire-nav/obs/9"),
                     Catch::Contains("guidewire-nav/obs/2") && Catch::Contains("guidewire-nav/obs/3"));
   CHECK(std::string(gw::observation_names()[gw::obs_index::kOmegaSide]) == "omega_side");
   CHECK(gw::parse_omega_plane("approach") == gw::OmegaPlane::kApproach);

@@ -1,0 +1,63 @@
+#include "engine/task/observation_layout.hpp"
+
+#include <stdexcept>
+
+namespace gw {
+
+namespace {
+// omega_side is measured about the approach direction only: the paper's plane (normal to the correct
+// branch) is the one where omega is blind, and nothing was trained on that combination.
+// obs/4 is obs/3 with junctions combined (ObservationLayout::junctions): the same entries, which mean the same on
+// a two-way fork with no fork close behind it.
+struct Layout {
+  const char* name;
+  OmegaPlane plane;
+  bool omega_side;
+  JunctionModel junctions;
+};
+constexpr Layout kLayouts[] = {{"guidewire-nav/obs/1", OmegaPlane::kCorrectBranch, false, JunctionModel::kSeparate},
+                               {"guidewire-nav/obs/2", OmegaPlane::kApproach, false, JunctionModel::kSeparate},
+                               {"guidewire-nav/obs/3", OmegaPlane::kApproach, true, JunctionModel::kSeparate},
+                               {"guidewire-nav/obs/4", OmegaPlane::kApproach, true, JunctionModel::kCombined}};
+}  // namespace
+
+const char* ObservationLayout::name() const {
+  for (const Layout& l : kLayouts)
+    if (l.plane == omega_plane && l.omega_side == omega_side && l.junctions == junctions) return l.name;
+  if (omega_side && omega_plane != OmegaPlane::kApproach)
+    throw std::invalid_argument("omega_side needs omega's plane 'approach' (no layout has it in the paper's plane)");
+  throw std::invalid_argument("combined junctions need omega's plane 'approach' and omega_side (layout obs/4)");
+}
+
+int ObservationLayout::size() const { return omega_side ? kObservationSize : kPaperObservationSize; }
+
+ObservationLayout ObservationLayout::parse(const std::string& name) {
+  std::string known;
+  for (const Layout& l : kLayouts) {
+    if (name == l.name) return {l.plane, l.omega_side, l.junctions};
+    known += std::string(known.empty() ? "" : ", ") + l.name;
+  }
+  throw std::invalid_argument("observation layout '" + name + "' is not one of " + known);
+}
+
+OmegaPlane parse_omega_plane(const std::string& text) {
+  if (text == "correct_branch") return OmegaPlane::kCorrectBranch;
+  if (text == "approach") return OmegaPlane::kApproach;
+  throw std::invalid_argument("omega plane '" + text + "' is not one of correct_branch, approach");
+}
+
+const char* omega_plane_name(OmegaPlane plane) {
+  return plane == OmegaPlane::kCorrectBranch ? "correct_branch" : "approach";
+}
+
+JunctionModel parse_junction_model(const std::string& text) {
+  if (text == "separate") return JunctionModel::kSeparate;
+  if (text == "combined") return JunctionModel::kCombined;
+  throw std::invalid_argument("junction model '" + text + "' is not one of separate, combined");
+}
+
+const char* junction_model_name(JunctionModel model) {
+  return model == JunctionModel::kSeparate ? "separate" : "combined";
+}
+
+}  // namespace gw

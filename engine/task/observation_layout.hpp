@@ -1,0 +1,63 @@
+#pragma once
+// What an actor's observation vector holds (observation.hpp): the plane omega is measured in, whether
+// omega's sine follows it, and how a junction's wrong branches enter omega. Each combination an actor
+// was trained on has a name, recorded in the exported actor's JSON (`obs_layout`) and in the server's
+// `spec`; the task (TaskConfig::observation), the server and the Eigen runtime all read it from here:
+//   guidewire-nav/obs/1  omega in the correct branch's normal plane (the paper's definition), 11 entries
+//   guidewire-nav/obs/2  omega in the approach plane, 11 entries (TaskConfig's default)
+//   guidewire-nav/obs/3  obs/2 + omega_side, 12 entries (the shipped actor)
+//   guidewire-nav/obs/4  obs/3 with junctions combined (docs/junctions.md), 12 entries
+#include <string>
+
+namespace gw {
+
+inline constexpr int kThetaCount = 3;
+// Every entry is computed on every step; a layout hands its first size() entries to the actor.
+inline constexpr int kObservationSize = 2 * kThetaCount + 6;
+inline constexpr int kPaperObservationSize = kObservationSize - 1;  // obs/1, obs/2: without omega_side
+
+// The plane omega is measured in (observation.hpp, omega).
+enum class OmegaPlane {
+  kCorrectBranch,  // paper 2.2.3: tip curvature and wrong direction w projected on the plane normal to the
+                   // correct branch c. Blind where c is ~90 deg off the approach: the tip's bend then
+                   // lies in that plane's normal and w_p ~ the approach axis, so omega ~ 0 for every roll
+  kApproach,       // curvature and (w - c) projected on the plane normal to the approach direction p (the
+                   // axis the proximal rotation rolls the tip bend around): -1 when the tip bends from the
+                   // wrong towards the correct branch. Equals kCorrectBranch's reading when c is along p
+};
+
+// How the wrong branches of a junction enter omega (observation.hpp; issue 41, docs/junctions.md).
+enum class JunctionModel {
+  kSeparate,  // each bifurcation on its own; with several wrong children omega is the largest (the most
+              // dangerous) one. The paper's task and every row of the results table
+  kCombined,  // a bifurcation also counts the wrong children of the bifurcations that follow it along the
+              // course within close_junction_diameters vessel diameters (closely spaced forks), and omega
+              // is measured against the mean of the wrong directions (a k-way junction: the tip aims
+              // away from all of them, reaching -1 where the max could not). Identical to kSeparate on a
+              // two-way fork with no fork close behind it; measured worse than kSeparate where two close forks' wrong
+              // branches lie on opposite sides (their mean cancels; results/junctions), so off by default
+};
+
+struct ObservationLayout {
+  OmegaPlane omega_plane = OmegaPlane::kApproach;  // kCorrectBranch = the paper's definition (obs/1)
+  bool omega_side = false;                         // obs/3, obs/4: omega's sine as a twelfth entry
+  JunctionModel junctions = JunctionModel::kSeparate;  // kCombined: obs/4
+
+  // The layout's name; throws std::invalid_argument for a combination no layout has (omega_side in the
+  // paper's plane; combined junctions without omega_side), naming why.
+  const char* name() const;
+  // How many leading observation entries the actor takes: 11, or 12 with omega_side.
+  int size() const;
+  // The layout called `name`; throws std::invalid_argument naming the known layouts.
+  static ObservationLayout parse(const std::string& name);
+};
+
+// "correct_branch" | "approach"; throws std::invalid_argument for anything else.
+OmegaPlane parse_omega_plane(const std::string& text);
+const char* omega_plane_name(OmegaPlane plane);
+
+// "separate" | "combined"; throws std::invalid_argument for anything else.
+JunctionModel parse_junction_model(const std::string& text);
+const char* junction_model_name(JunctionModel model);
+
+}  // namespace gw

@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "centerline/extract/anatomy_index.hpp"
+#include "centerline/graph/anatomy_index.hpp"
 #include "centerline/extract/compare_centerlines.hpp"
 #include "centerline/extract/extract_centerline.hpp"
 #include "centerline/extract/intake_surface.hpp"

@@ -20,7 +20,9 @@ std::vector<AnatomyEntry> list_anatomy_specs(const std::string& root) {
       if (!anatomy.is_directory()) continue;
       const std::string name = anatomy.path().filename().string();
       const fs::path spec = anatomy.path() / (name + ".spec.json");
-      if (fs::exists(spec)) out.push_back({name, set.path().filename().string(), spec.string()});
+      if (fs::exists(spec))
+        out.push_back({name, set.path().filename().string(), (anatomy.path() / (name + ".stl")).string(),
+                       (anatomy.path() / (name + ".truth.json")).string(), spec.string()});
     }
   }
   std::sort(out.begin(), out.end(), [](const AnatomyEntry& a, const AnatomyEntry& b) {
@@ -51,15 +53,15 @@ void write_anatomy_index(const std::string& root) {
 std::vector<std::string> regenerate_anatomy_set(const std::string& root) {
   std::vector<std::string> summaries;
   for (const AnatomyEntry& e : list_anatomy_specs(root)) {
-    const TreeSpec spec = read_tree_spec(e.spec_path);
-    if (spec.name != e.name) throw SpecError(e.spec_path + ": name '" + spec.name + "' differs from its folder");
+    const TreeSpec spec = read_tree_spec(e.spec);
+    if (spec.name != e.name) throw SpecError(e.spec + ": name '" + spec.name + "' differs from its folder");
     Anatomy a;
     try {
       a = generate_anatomy(spec);
     } catch (const std::exception& ex) {
-      throw SpecError(e.spec_path + ": " + ex.what());
+      throw SpecError(e.spec + ": " + ex.what());
     }
-    write_anatomy(a, fs::path(e.spec_path).parent_path().string());
+    write_anatomy(a, fs::path(e.spec).parent_path().string());
     summaries.push_back(anatomy_summary_json(a));
   }
   write_anatomy_index(root);

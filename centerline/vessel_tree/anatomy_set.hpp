@@ -4,14 +4,12 @@
 #include <string>
 #include <vector>
 
+#include "centerline/graph/anatomy_index.hpp"
+
 namespace gw {
 
-struct AnatomyEntry {
-  std::string name, set;
-  std::string spec_path;  // on disk
-};
-
-// Every ROOT/*/*/*.spec.json whose file name matches its folder, sorted by set then name.
+// Every ROOT/*/*/*.spec.json whose file name matches its folder, sorted by set then name: entries with
+// `spec` and the mesh and truth paths the generator writes beside it.
 std::vector<AnatomyEntry> list_anatomy_specs(const std::string& root);
 
 // Writes ROOT/index.json: {"anatomies": [{name, set, mesh, truth, spec}, ...]} with paths

@@ -2,10 +2,9 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "centerline/graph/anatomy_index.hpp"
 #include "engine/mesh/load_mesh.hpp"
 
 namespace gw {
@@ -62,42 +61,12 @@ bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-struct IndexEntry {
-  std::string name, set, mesh, truth;
-};
-
-std::vector<IndexEntry> read_index(const std::string& index_path) {
-  std::ifstream in(index_path);
-  if (!in) throw std::runtime_error(index_path + ": cannot open anatomy index");
-  nlohmann::json j;
-  try {
-    in >> j;
-  } catch (const std::exception& e) {
-    throw std::runtime_error(index_path + ": not valid JSON: " + e.what());
-  }
-  const nlohmann::json& list = j.is_object() && j.contains("anatomies") ? j["anatomies"] : j;
-  if (!list.is_array()) throw std::runtime_error(index_path + ": expected a list of anatomies");
-  const fs::path root = fs::absolute(fs::path(index_path)).parent_path().parent_path();
-  std::vector<IndexEntry> entries;
-  for (const auto& e : list) {
-    try {
-      IndexEntry x{e.at("name").get<std::string>(), e.value("set", std::string()),
-                   (root / e.at("mesh").get<std::string>()).string(),
-                   (root / e.at("truth").get<std::string>()).string()};
-      entries.push_back(std::move(x));
-    } catch (const std::exception& ex) {
-      throw std::runtime_error(index_path + ": bad anatomy entry: " + ex.what());
-    }
-  }
-  return entries;
-}
-
 }  // namespace
 
 std::vector<AnatomySource> resolve_anatomy_sources(const std::string& spec, const std::string& index_path) {
   const std::vector<std::string> items = split_commas(spec);
   if (items.empty()) throw std::runtime_error("anatomy list is empty");
-  std::vector<IndexEntry> index;
+  std::vector<AnatomyEntry> index;
   bool index_read = false;
   std::vector<AnatomySource> out;
   for (const std::string& item : items) {
@@ -118,11 +87,11 @@ std::vector<AnatomySource> resolve_anatomy_sources(const std::string& spec, cons
       continue;
     }
     if (!index_read) {
-      index = read_index(index_path);
+      index = read_anatomy_index(index_path);
       index_read = true;
     }
     bool found = false;
-    for (const IndexEntry& e : index) {
+    for (const AnatomyEntry& e : index) {
       if (e.set == item || e.name == item) {
         out.push_back({e.name, e.mesh, e.truth});
         found = true;

@@ -6,12 +6,12 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "centerline/graph/anatomy_index.hpp"
 #include "centerline/graph/centerline_graph.hpp"
 #include "engine/mesh/triangle_mesh.hpp"
 
@@ -33,17 +33,8 @@ inline std::string read_text(const std::string& path) {
   return s.str();
 }
 
-struct IndexEntry {
-  std::string name, set, mesh, truth, spec;  // absolute paths
-};
-
-inline std::vector<IndexEntry> committed_anatomies() {
-  const auto j = nlohmann::json::parse(read_text(repo("anatomies/index.json")));
-  std::vector<IndexEntry> out;
-  for (const auto& e : j.at("anatomies"))
-    out.push_back({e.at("name"), e.at("set"), repo(e.at("mesh")), repo(e.at("truth")), repo(e.at("spec"))});
-  return out;
-}
+// anatomies/index.json through the project's one reader (every path absolute).
+inline std::vector<gw::AnatomyEntry> committed_anatomies() { return gw::read_anatomy_index(repo("anatomies/index.json")); }
 
 // ---- Reference volume of the union of tubes described by a centerline graph ----------------
 // Each graph branch polyline is a chain of truncated cones (radius linear along a segment)

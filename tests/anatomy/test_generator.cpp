@@ -1,5 +1,6 @@
 // The generator on small trees: truth graph structure, side branches, open ends, deformation.
 #include <catch2/catch.hpp>
+#include <map>
 
 #include "anatomy_helpers.hpp"
 #include "centerline/vessel_tree/deformation.hpp"

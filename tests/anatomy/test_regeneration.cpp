@@ -1,6 +1,7 @@
 // Regenerating from the committed specs reproduces the committed files byte for byte,
 // and the CLI writes the same files plus a copy of the spec.
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 #include <array>
 #include <cstdio>
 #include <sys/wait.h>

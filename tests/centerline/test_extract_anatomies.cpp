@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "centerline/extract/anatomy_index.hpp"
+#include "centerline/graph/anatomy_index.hpp"
 #include "centerline/extract/compare_centerlines.hpp"
 #include "centerline/extract/extract_centerline.hpp"
 #include "centerline/vessel_tree/generate_anatomy.hpp"

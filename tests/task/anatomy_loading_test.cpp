@@ -52,6 +52,9 @@ TEST_CASE("anatomy sources: clear errors", "[task][anatomy]") {
                     Catch::Contains("lonely.truth.json"));
   std::ofstream(d / "index.json") << "{ not json";
   CHECK_THROWS_WITH(gw::resolve_anatomy_sources("train", (d / "index.json").string()), Catch::Contains("not valid JSON"));
+  std::ofstream(d / "no_mesh.json") << R"({"anatomies": [{"name": "x", "set": "train", "truth": "x.truth.json"}]})";
+  CHECK_THROWS_WITH(gw::resolve_anatomy_sources("train", (d / "no_mesh.json").string()),
+                    Catch::Contains("no_mesh.json") && Catch::Contains("bad anatomy entry") && Catch::Contains("mesh"));
   std::ofstream(d / "bad.truth.json") << R"({"schema":"guidewire-nav/centerline/1"})";
   fs::copy_file(kT1 + ".stl", d / "bad.stl");
   CHECK_THROWS_WITH(gw::load_anatomies((d / "bad.stl").string(), kIndex), Catch::Contains("bad.truth.json"));

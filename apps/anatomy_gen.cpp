@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
     }
     const gw::TreeSpec spec = gw::read_tree_spec(spec_path);
     if (phase != -1.0) options.deform_phase = phase;
-    gw::Anatomy anatomy;
+    gw::GeneratedAnatomy anatomy;
     try {
       anatomy = gw::generate_anatomy(spec, options);
     } catch (const std::exception& e) {

@@ -55,7 +55,7 @@ std::vector<std::string> regenerate_anatomy_set(const std::string& root) {
   for (const AnatomyEntry& e : list_anatomy_specs(root)) {
     const TreeSpec spec = read_tree_spec(e.spec);
     if (spec.name != e.name) throw SpecError(e.spec + ": name '" + spec.name + "' differs from its folder");
-    Anatomy a;
+    GeneratedAnatomy a;
     try {
       a = generate_anatomy(spec);
     } catch (const std::exception& ex) {

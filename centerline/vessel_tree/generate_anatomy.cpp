@@ -14,9 +14,9 @@
 
 namespace gw {
 
-Anatomy generate_anatomy(const TreeSpec& spec, const AnatomyOptions& options) {
+GeneratedAnatomy generate_anatomy(const TreeSpec& spec, const AnatomyOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  Anatomy out;
+  GeneratedAnatomy out;
   out.spec = spec;
   TreeSpec shaped = spec;
   if (options.deform_phase) {
@@ -44,12 +44,12 @@ Anatomy generate_anatomy(const TreeSpec& spec, const AnatomyOptions& options) {
   return out;
 }
 
-void write_anatomy(const Anatomy& a, const std::string& dir) {
+void write_anatomy(const GeneratedAnatomy& a, const std::string& dir) {
   write_stl(a.mesh, dir + "/" + a.spec.name + ".stl", "guidewire-nav anatomy " + a.spec.name + " (mm)");
   write_centerline(a.truth, dir + "/" + a.spec.name + ".truth.json");
 }
 
-std::string anatomy_summary_json(const Anatomy& a) {
+std::string anatomy_summary_json(const GeneratedAnatomy& a) {
   nlohmann::json j;
   j["name"] = a.spec.name;
   j["faces"] = a.mesh.F.rows();

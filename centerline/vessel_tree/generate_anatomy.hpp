@@ -14,7 +14,7 @@ struct AnatomyOptions {
   std::optional<double> deform_phase;   // overrides spec.deformation.phase
 };
 
-struct Anatomy {
+struct GeneratedAnatomy {
   TreeSpec spec;            // as generated (the deformation phase actually used recorded)
   TriangleMesh mesh;        // millimetres, closed unless open_ends
   CenterlineGraph truth;    // same schema as `centerline` output
@@ -26,12 +26,12 @@ struct Anatomy {
 // the implicit surface and builds the truth. Throws SpecError for a bad spec (message
 // names the problem) and MeshError if the mesh fails its own checks (closed, manifold,
 // one component): a generator bug, never silently written.
-Anatomy generate_anatomy(const TreeSpec& spec, const AnatomyOptions& options = {});
+GeneratedAnatomy generate_anatomy(const TreeSpec& spec, const AnatomyOptions& options = {});
 
 // Writes DIR/<name>.stl and DIR/<name>.truth.json (write_centerline).
-void write_anatomy(const Anatomy& anatomy, const std::string& dir);
+void write_anatomy(const GeneratedAnatomy& anatomy, const std::string& dir);
 
 // One-line JSON summary: name, faces, vertices, volume, targets, bifurcations, seconds.
-std::string anatomy_summary_json(const Anatomy& anatomy);
+std::string anatomy_summary_json(const GeneratedAnatomy& anatomy);
 
 }  // namespace gw

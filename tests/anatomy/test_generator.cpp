@@ -47,8 +47,8 @@ TEST_CASE("truth graph: split at side branches, children start at the bifurcatio
 
 TEST_CASE("open ends: one boundary loop per inlet/outlet, on the cap circle", "[anatomy][open]") {
   const gw::TreeSpec spec = gw::parse_tree_spec(kTree);
-  const gw::Anatomy closed = gw::generate_anatomy(spec);
-  const gw::Anatomy open = gw::generate_anatomy(spec, {true, std::nullopt});
+  const gw::GeneratedAnatomy closed = gw::generate_anatomy(spec);
+  const gw::GeneratedAnatomy open = gw::generate_anatomy(spec, {true, std::nullopt});
   const gw::MeshReport c = gw::validate_mesh(closed.mesh), o = gw::validate_mesh(open.mesh);
   CHECK(c.closed());
   CHECK(o.boundary_loops == 4);  // inlet + 3 outlets

@@ -30,7 +30,7 @@ Run run_cli(const std::string& args) {
 
 TEST_CASE("regenerating a training anatomy reproduces the committed mesh and truth exactly", "[anatomy][regenerate]") {
   const std::string base = gw::test::repo("anatomies/train/t4_s_curving_back/t4_s_curving_back");
-  const gw::Anatomy a = gw::generate_anatomy(gw::read_tree_spec(base + ".spec.json"));
+  const gw::GeneratedAnatomy a = gw::generate_anatomy(gw::read_tree_spec(base + ".spec.json"));
   const std::string dir = gw::test::scratch_dir("regenerate");
   gw::write_anatomy(a, dir);
   CHECK(gw::test::read_text(dir + "/t4_s_curving_back.stl") == gw::test::read_text(base + ".stl"));

@@ -80,7 +80,7 @@ TEST_CASE("an open, noisy coronary tree (like a clinical segmentation) meets the
   REQUIRE(!entry.name.empty());
   AnatomyOptions options;
   options.open_ends = true;
-  Anatomy anatomy = generate_anatomy(read_tree_spec(entry.spec), options);
+  GeneratedAnatomy anatomy = generate_anatomy(read_tree_spec(entry.spec), options);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> jitter(-0.1 / std::sqrt(3.0), 0.1 / std::sqrt(3.0));
   for (Eigen::Index i = 0; i < anatomy.mesh.V.rows(); ++i)

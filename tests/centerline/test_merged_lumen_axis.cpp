@@ -17,7 +17,7 @@ constexpr double kParentRadius = 1.6, kSideRadius = 1.2, kAngle = 25.0 * M_PI / 
 const Vector3d kJunction(15, 0, 0);
 const Vector3d kSideDir(std::cos(kAngle), std::sin(kAngle), 0);
 
-gw::Anatomy shallow_y() {
+gw::GeneratedAnatomy shallow_y() {
   gw::TreeSpec spec;
   spec.name = "shallow_y";
   spec.branches.push_back({"parent", -1, {{0, 0, 0}, {20, 0, 0}, {40, 0, 0}}, {kParentRadius, kParentRadius, kParentRadius}});
@@ -34,7 +34,7 @@ double off_side_axis(const Vector3d& q) {
 }  // namespace
 
 TEST_CASE("a shallow side branch's axis is recovered inside the merged lumen", "[centerline][junction]") {
-  const gw::Anatomy y = shallow_y();
+  const gw::GeneratedAnatomy y = shallow_y();
   const gw::VesselWall wall(y.mesh);
   // Start where the side branch is a clean tube, with its axis slightly wrong (as fitted there).
   const Vector3d start = kJunction + 14.0 * kSideDir + Vector3d(0, 0, 0.1);
@@ -55,7 +55,7 @@ TEST_CASE("a shallow side branch's axis is recovered inside the merged lumen", "
 }
 
 TEST_CASE("extraction puts a shallow bifurcation on the true junction", "[centerline][junction]") {
-  const gw::Anatomy y = shallow_y();
+  const gw::GeneratedAnatomy y = shallow_y();
   gw::CenterlineOptions options;
   options.inlet = Vector3d(0, 0, 0);
   const gw::CenterlineAccuracy acc = gw::compare_centerlines(gw::extract_centerline(y.mesh, options), y.truth);

@@ -59,7 +59,7 @@ TEST_CASE("aortic arches: the supra-aortic origins lie on the arch's axis", "[ce
   for (int type : {1, 2, 3}) {
     INFO("arch type " << type);
     const std::string spec = std::string(GW_SOURCE_DIR) + "/anatomies/segmentation/arch_type" + std::to_string(type) + ".spec.json";
-    const Anatomy arch = generate_anatomy(read_tree_spec(spec), AnatomyOptions{});
+    const GeneratedAnatomy arch = generate_anatomy(read_tree_spec(spec), AnatomyOptions{});
     CenterlineOptions options;
     options.inlet = arch.truth.inlet.position;
     const CenterlineAccuracy acc = compare_centerlines(extract_centerline(arch.mesh, options), arch.truth);

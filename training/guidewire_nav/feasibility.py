@@ -30,15 +30,15 @@ from pathlib import Path
 
 import numpy as np
 
-from guidewire_nav.baselines import scripted_omega_action  # the scripted rule
+from guidewire_nav.baselines import SCRIPTED_OMEGA_RELEASE, scripted_omega_action  # the scripted rule
 
 # schedule(omega, k): the action from omega (read at the index the server's spec names) and k, the number of
 # actions the task has applied so far (steps in control: on trees only near a bifurcation), as the C++
 # schedules count them.
 SCHEDULES = {
-    "aim-0.95": lambda omega, k: scripted_omega_action(omega, -0.95, 1.0),
+    "aim-0.95": lambda omega, k: scripted_omega_action(omega, SCRIPTED_OMEGA_RELEASE, 1.0),
     "aim-0.7": lambda omega, k: scripted_omega_action(omega, -0.7, 1.0),
-    "aim-0.95-ccw": lambda omega, k: scripted_omega_action(omega, -0.95, -1.0),
+    "aim-0.95-ccw": lambda omega, k: scripted_omega_action(omega, SCRIPTED_OMEGA_RELEASE, -1.0),
     "spin-1": lambda omega, k: -1.0,
     "spin-0.3": lambda omega, k: -0.3,
     "spin+0.3": lambda omega, k: 0.3,

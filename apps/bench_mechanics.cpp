@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
         cm.fixed_point = inlet;
       }
       cm.heart_rate_bpm = heart_rate;
-      const gw::VesselScene moving = gw::attach_wall_motion(scene, gw::cardiac_wall_motion(scene.mesh, cm));
+      const gw::VesselScene moving = gw::attach_wall_motion(scene, gw::heart_wall_motion(scene.mesh, cm));
       const gw::InsertionBenchmark bb = gw::run_insertion_benchmark(model, moving, inlet, dir, roll, push, length);
       beating = {{"heart_rate_bpm", heart_rate},
                  {"motion", motion_path.empty() ? "generator coronary field, fixed at the inlet" : motion_path},

@@ -15,7 +15,7 @@ namespace gw {
 void make_anatomy_beat(Anatomy& anatomy, const CardiacMotion& motion) {
   if (!anatomy.scene) throw std::invalid_argument(anatomy.name + ": no vessel wall to move");
   if (anatomy.scene->motion) throw std::invalid_argument(anatomy.name + ": the wall already moves");
-  const WallMotion wall = cardiac_wall_motion(anatomy.scene->mesh, motion);
+  const WallMotion wall = heart_wall_motion(anatomy.scene->mesh, motion);
   auto scene = std::make_shared<const VesselScene>(attach_wall_motion(*anatomy.scene, wall));
   if (!scene->motion && scene->mesh.V != anatomy.scene->mesh.V) {  // frozen in a deformed shape
     VesselScene moving = *anatomy.scene;

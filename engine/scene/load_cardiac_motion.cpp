@@ -1,6 +1,7 @@
 // load_cardiac_motion (engine/scene/wall_motion.hpp).
 // Input: the path of a motion JSON file. Output: its CardiacMotion (missing keys keep their defaults).
 // Throws std::runtime_error "<file>: <problem>".
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -23,7 +24,7 @@ CardiacMotion load_cardiac_motion(const std::string& path) {
   static const std::set<std::string> known = {
       "heart_rate_bpm", "systole_fraction", "phase_offset",        "axis_origin",    "axis_direction",
       "contraction_mm", "reference_radius_mm", "shortening_mm",    "reference_length_mm", "twist_deg_per_cm",
-      "rotation_deg",   "translation_mm",   "fixed_point", "comment"};
+      "rotation_deg",   "translation_mm",   "fixed_point", "comment",  "phase_surfaces"};
   for (const auto& item : j.items())
     if (!known.count(item.key())) throw std::runtime_error(path + ": unknown key \"" + item.key() + "\"");
   CardiacMotion m;
@@ -54,6 +55,22 @@ CardiacMotion load_cardiac_motion(const std::string& path) {
   if (j.contains("fixed_point")) {
     vec3("fixed_point", m.fixed_point);
     m.has_fixed_point = true;
+  }
+  if (j.contains("phase_surfaces")) {
+    const auto& list = j["phase_surfaces"];
+    if (!list.is_array() || list.size() < 2)
+      throw std::runtime_error(path + ": \"phase_surfaces\" must be an array of at least two surface files");
+    for (const auto& item : j.items())
+      if (item.key() != "phase_surfaces" && item.key() != "heart_rate_bpm" && item.key() != "phase_offset" &&
+          item.key() != "comment")
+        throw std::runtime_error(path + ": \"" + item.key() + "\" is a parametric motion key: with \"phase_surfaces\" "
+                                 "the wall follows the surfaces (keep only heart_rate_bpm and phase_offset)");
+    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+    for (const auto& f : list) {
+      if (!f.is_string()) throw std::runtime_error(path + ": \"phase_surfaces\" must hold file names");
+      const std::filesystem::path p(f.get<std::string>());
+      m.phase_surfaces.push_back(p.is_absolute() ? p.string() : (folder / p).string());
+    }
   }
   return m;
 }

@@ -48,6 +48,9 @@ struct CardiacMotion {
   // tip engaged in the ostium, so the simulation runs in the catheter's frame and the introducer stays put.
   bool has_fixed_point = false;
   Eigen::Vector3d fixed_point = Eigen::Vector3d::Zero();
+  // 4D CT instead of the parametric map: N >= 2 surface files (paths), the wall at phases j / N, with the
+  // rest mesh's vertex count, order and triangles (heart_wall_motion). Only the timing keys go with them.
+  std::vector<std::string> phase_surfaces;
 };
 
 struct WallMotion {
@@ -95,9 +98,15 @@ WallMotion phase_wall_motion(const TriangleMesh& rest, const std::vector<Eigen::
 // A motion JSON file: {"heart_rate_bpm": 72, "systole_fraction": 0.33, "axis_origin": [x, y, z],
 // "axis_direction": [..], "contraction_mm": 2, "shortening_mm": 1, "twist_deg_per_cm": 3,
 // "rotation_deg": 4, "translation_mm": [..], "fixed_point": [..], ...} (the CardiacMotion fields; missing ones keep their
-// defaults). Throws std::runtime_error "<file>: <problem>" for an unreadable file, an unknown key or a
-// bad value.
+// defaults), or 4D CT: {"heart_rate_bpm": 72, "phase_offset": 0, "phase_surfaces": ["ed.obj", "p1.obj", ...]}
+// (paths relative to the file; no parametric key beside them). Throws std::runtime_error "<file>: <problem>"
+// for an unreadable file, an unknown key or a bad value.
 CardiacMotion load_cardiac_motion(const std::string& path);
+
+// The wall motion a CardiacMotion describes on `rest`: phase_wall_motion of its phase surfaces (each loaded
+// with load_mesh, millimetres as written; refused, naming the file, unless its triangles are the rest
+// mesh's: same vertex count, order and faces), else cardiac_wall_motion. Throws std::runtime_error.
+WallMotion heart_wall_motion(const TriangleMesh& rest, const CardiacMotion& params);
 
 // Current position of rest vertex `vertex` at time t (computed as X + D, so exactly X when D = 0).
 Eigen::Vector3d wall_vertex_position(const WallMotion& m, const TriangleMesh& rest, int vertex, double t);

@@ -106,3 +106,61 @@ TEST_CASE("evaluate: the beating coronary rows follow the paper's rows, which ar
   CHECK(gw::select_rows(table, "coronary 60 bpm").at(0).heart_rate_bpm == 60);
   CHECK(gw::select_rows(table, "coronary 100 bpm").at(0).heart_rate_bpm == 100);
 }
+
+namespace {
+
+// An OBJ of `mesh` with its vertices moved by `shift` (same vertex order and triangles).
+void write_obj(const std::filesystem::path& path, const gw::TriangleMesh& mesh, const Eigen::Vector3d& shift) {
+  std::ofstream out(path);
+  out.precision(17);
+  for (Eigen::Index i = 0; i < mesh.V.rows(); ++i)
+    out << "v " << mesh.V(i, 0) + shift.x() << " " << mesh.V(i, 1) + shift.y() << " " << mesh.V(i, 2) + shift.z() << "\n";
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    out << "f " << mesh.F(f, 0) + 1 << " " << mesh.F(f, 1) + 1 << " " << mesh.F(f, 2) + 1 << "\n";
+}
+
+}  // namespace
+
+TEST_CASE("heart motion: 4D CT phase surfaces from a motion file move the wall through them", "[runner][heart]") {
+  // Three phases of the t1 tree (the rest mesh, shifted 0.6 mm in x, shifted 0.6 mm in y) written as OBJ, and
+  // a motion file naming them: at 60 bpm the wall is at phase j / 3 at t = j / 3 s, in between interpolated.
+  const std::string stem = std::string(GW_SOURCE_DIR) + "/anatomies/train/t1_straight_y/t1_straight_y";
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "gw_phase_surfaces_test";
+  std::filesystem::create_directories(dir);
+  gw::Anatomy a = gw::load_anatomy("t1", stem + ".stl", stem + ".truth.json");
+  const gw::TriangleMesh rest = a.scene->mesh;
+  write_obj(dir / "p0.obj", rest, Eigen::Vector3d::Zero());
+  write_obj(dir / "p1.obj", rest, Eigen::Vector3d(0.6, 0, 0));
+  write_obj(dir / "p2.obj", rest, Eigen::Vector3d(0, 0.6, 0));
+  std::ofstream(dir / "motion.json") << R"({"heart_rate_bpm": 60, "phase_surfaces": ["p0.obj", "p1.obj", "p2.obj"]})";
+  gw::HeartSettings h;
+  h.motion_path = (dir / "motion.json").string();
+  CHECK(gw::apply_heart_settings(a, h) == h.motion_path);
+  REQUIRE(a.scene->motion);
+  CHECK(a.scene->motion->kind == gw::WallMotionKind::phases);
+  // (1e-6: the mesh reader keeps coordinates in single precision.)
+  for (const int v : {0, 100, static_cast<int>(rest.V.rows()) - 1}) {
+    const Eigen::Vector3d X = rest.V.row(v).transpose();
+    CHECK((gw::current_wall_vertex(*a.scene, v, 1.0 / 3.0) - (X + Eigen::Vector3d(0.6, 0, 0))).norm() < 1e-6);
+    CHECK((gw::current_wall_vertex(*a.scene, v, 2.0 / 3.0) - (X + Eigen::Vector3d(0, 0.6, 0))).norm() < 1e-6);
+    CHECK((gw::current_wall_vertex(*a.scene, v, 0.5) - (X + Eigen::Vector3d(0.3, 0.3, 0))).norm() < 1e-6);
+    CHECK((gw::current_wall_vertex(*a.scene, v, 1.0) - X).norm() < 1e-6);  // one cycle later: phase 0 again
+  }
+  // The task follows the moving wall: its centerline at t is mapped through the surfaces (graph_motion.hpp).
+  gw::NavigationTask task = gw::make_navigation_task({}, gw::default_wire_params(), {a});
+  CHECK(task.anatomies.size() == 1);
+
+  // A surface with other triangles, a motion file mixing phase surfaces with a parametric key: refused, named.
+  gw::TriangleMesh fewer = rest;
+  fewer.F.conservativeResize(rest.F.rows() - 1, 3);
+  write_obj(dir / "bad.obj", fewer, Eigen::Vector3d::Zero());
+  std::ofstream(dir / "bad_motion.json") << R"({"heart_rate_bpm": 60, "phase_surfaces": ["p0.obj", "bad.obj"]})";
+  gw::Anatomy b = gw::load_anatomy("t1", stem + ".stl", stem + ".truth.json");
+  h.motion_path = (dir / "bad_motion.json").string();
+  CHECK_THROWS_WITH(gw::apply_heart_settings(b, h), Catch::Contains("bad.obj") && Catch::Contains("same mesh moved"));
+  std::ofstream(dir / "mixed.json") << R"({"phase_surfaces": ["p0.obj", "p1.obj"], "contraction_mm": 1})";
+  CHECK_THROWS_WITH(gw::load_cardiac_motion((dir / "mixed.json").string()),
+                    Catch::Contains("mixed.json") && Catch::Contains("contraction_mm"));
+  std::ofstream(dir / "one.json") << R"({"phase_surfaces": ["p0.obj"]})";
+  CHECK_THROWS_WITH(gw::load_cardiac_motion((dir / "one.json").string()), Catch::Contains("at least two"));
+}

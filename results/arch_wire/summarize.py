@@ -32,10 +32,10 @@ def wilson(k, n, z=1.959963984540054):
     return (max(0.0, centre - half), min(1.0, centre + half))
 
 
-def target_names(arch):
+def target_names(arch, folder=HERE):
     """Target id -> vessel name, from the navigate --list table (by the target's end radius)."""
     names = {}
-    path = os.path.join(HERE, f"targets_{arch}.txt")
+    path = os.path.join(folder, f"targets_{arch}.txt")
     for line in open(path):
         m = re.match(r"\s*(\d+)\s+\(([^)]*)\)\s+([\d.]+)\s+([\d.]+)", line)
         if not m:
@@ -101,6 +101,34 @@ def vessel_scale_section():
                 fixed_cell = f"{kf}/{len(f)}" if f else "missing"
                 out.append(f"| {a} | {tid}: {names[tid][0]} | {c} | {fixed_cell} | {kv}/{len(v)} | "
                            f"{100 * lo:.0f}-{100 * hi:.0f}% | {oc} |")
+    return out
+
+
+def fifty_section():
+    """fifty/: 50 episodes per target and controller with the vessel-scale task (the default for these inlets),
+    the arches' centerlines extracted with the three bifurcations of the truth (2026-12-02), seeds 0-199 in
+    target order; the target tables beside them (numbering as extracted)."""
+    folder = os.path.join(HERE, "fifty")
+    out = ["\n### 50 episodes per target, vessel-scale task (fifty/)\n",
+           "| arch | target | " + " | ".join(f"{c} k/n | 95 % CI" for c in CONTROLLERS) + " |",
+           "|---|---|" + "---|---|" * len(CONTROLLERS)]
+    for a in ARCHES:
+        names = target_names(a, folder)
+        runs = {}
+        for c in CONTROLLERS:
+            path = os.path.join(folder, f"{a}_{c}.json")
+            runs[c] = json.load(open(path)) if os.path.exists(path) and os.path.getsize(path) else None
+        for tid in sorted(names):
+            cells = []
+            for c in CONTROLLERS:
+                if runs[c] is None:
+                    cells.append("not run | ")
+                    continue
+                rs = [r for r in runs[c]["results"] if r["target"] == tid]
+                k = sum(r["outcome"] == "success" for r in rs)
+                lo, hi = wilson(k, len(rs))
+                cells.append(f"{k}/{len(rs)} | {100 * lo:.0f}-{100 * hi:.0f}%")
+            out.append(f"| {a} | {tid}: {names[tid][0]} | " + " | ".join(cells) + " |")
     return out
 
 
@@ -180,6 +208,7 @@ def main():
     if missing:
         out.append("\nMissing runs: " + ", ".join(missing))
     out.extend(vessel_scale_section())
+    out.extend(fifty_section())
     print("\n".join(out))
     return 0
 

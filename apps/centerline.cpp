@@ -64,7 +64,8 @@ int main(int argc, char** argv) {
       if (hit) std::cerr << "centerline: " << path << ": from cache\n";
       else
         std::cerr << "centerline: " << path << ": " << stats.input_faces << " faces -> " << stats.skeleton_faces
-                  << " for MCF" << (stats.skeleton_passes > 1 ? " (remeshed finer for a thin branch)" : "") << "; prepare " << stats.seconds_prepare << " s, skeleton " << stats.seconds_skeleton
+                  << " for MCF" << (stats.skeleton_passes > 1 ? " (remeshed finer for a thin branch)" : "")
+                  << "; prepare " << stats.seconds_prepare << " s, skeleton " << stats.seconds_skeleton
                   << " s, graph " << stats.seconds_graph << " s; wall roughness "
                   << (stats.wall_noise > 0 ? std::to_string(stats.wall_noise) + " of the radius (rough-wall section tests)"
                                            : std::string("below 1% of the radius (smooth)"))

@@ -1,7 +1,8 @@
 // heart_wall_motion (engine/scene/wall_motion.hpp).
 // Inputs: the rest mesh (the scene's) and a CardiacMotion. Output: its wall motion: the phase surfaces'
 // (4D CT; each file loaded with load_mesh and matched to the rest mesh triangle for triangle) or the
-// parametric map's. Throws std::runtime_error naming a file that cannot be loaded or does not match.
+// parametric map's. Throws std::runtime_error naming a file that cannot be loaded or does not match, and
+// std::invalid_argument for a bad rate or phase (as cardiac_wall_motion does).
 #include <stdexcept>
 #include <string>
 
@@ -23,11 +24,7 @@ WallMotion heart_wall_motion(const TriangleMesh& rest, const CardiacMotion& para
                                "segmentation's mesh, e.g. as OBJ or PLY)");
     frames.push_back(phase.V);
   }
-  try {
-    return phase_wall_motion(rest, frames, params.heart_rate_bpm, params.phase_offset);
-  } catch (const std::invalid_argument& e) {
-    throw std::runtime_error(params.phase_surfaces.front() + " ...: " + e.what());
-  }
+  return phase_wall_motion(rest, frames, params.heart_rate_bpm, params.phase_offset);
 }
 
 }  // namespace gw

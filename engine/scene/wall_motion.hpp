@@ -105,7 +105,8 @@ CardiacMotion load_cardiac_motion(const std::string& path);
 
 // The wall motion a CardiacMotion describes on `rest`: phase_wall_motion of its phase surfaces (each loaded
 // with load_mesh, millimetres as written; refused, naming the file, unless its triangles are the rest
-// mesh's: same vertex count, order and faces), else cardiac_wall_motion. Throws std::runtime_error.
+// mesh's: same vertex count, order and faces), else cardiac_wall_motion. Throws std::runtime_error for a
+// file, std::invalid_argument for bad timing.
 WallMotion heart_wall_motion(const TriangleMesh& rest, const CardiacMotion& params);
 
 // Current position of rest vertex `vertex` at time t (computed as X + D, so exactly X when D = 0).

@@ -45,6 +45,18 @@ int main(int argc, char** argv) {
                  "how a junction's wrong branches enter omega: separate (the paper's) or combined (k-way junctions and "
                  "closely spaced forks aimed at together; with --omega-side: layout obs/4, docs/junctions.md)")
       ->capture_default_str();
+  bool push_pull = false;
+  app.add_flag("--push-pull", push_pull,
+               "the actor also sets the insertion speed: action [rotation, insertion] (layout act/2) and observation "
+               "obs/5 (obs/3 with the insertion and a wrong-branch flag; docs/recovery.md)");
+  app.add_option("--recovery", config.recovery_attempts,
+                 "the procedure goes on after the strict end, at most K retries (docs/recovery.md; with --push-pull the "
+                 "actor pulls back itself)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--reward-wrong-branch", config.reward_wrong_branch,
+                 "--push-pull: reward lost per env step while the tip is in a wrong child")
+      ->capture_default_str();
   app.add_option("--task-scale", task_scale,
                  "wrong-branch and control-zone lengths: fixed (the paper's millimetres), vessel (from the walls), "
                  "auto (vessel for an inlet wider than 4 mm in radius; docs/vessel_scale.md)")
@@ -83,6 +95,10 @@ int main(int argc, char** argv) {
     config.observation.omega_plane = gw::parse_omega_plane(omega_plane);
     config.observation.junctions = gw::parse_junction_model(junctions);
     config.task_scale = gw::parse_task_scale(task_scale);
+    if (push_pull) {
+      config.action = gw::ActionLayout::kRotationInsertion;
+      config.observation.omega_side = config.observation.push_pull = true;
+    }
     config.observation.name();  // refuses omega_side in the paper's plane, naming why
     const gw::WireParams wire = wire_json.empty() ? gw::default_wire_params() : gw::load_wire_params(wire_json);
     std::vector<gw::Anatomy> loaded = gw::load_indexed_anatomies(anatomies, index);

@@ -6,13 +6,14 @@
 namespace gw {
 
 ActorMLP::ActorMLP(std::vector<DenseLayer> layers, ObsNormalization norm, Eigen::VectorXf action_low,
-                   Eigen::VectorXf action_high, bool squash, std::string obs_layout)
+                   Eigen::VectorXf action_high, bool squash, std::string obs_layout, std::string action_layout)
     : layers_(std::move(layers)),
       norm_(std::move(norm)),
       low_(std::move(action_low)),
       high_(std::move(action_high)),
       squash_(squash),
-      obs_layout_(std::move(obs_layout)) {
+      obs_layout_(std::move(obs_layout)),
+      action_layout_(std::move(action_layout)) {
   if (layers_.empty()) throw std::invalid_argument("ActorMLP: no layers");
   obs_size_ = static_cast<int>(layers_.front().weight.cols());
   action_size_ = static_cast<int>(layers_.back().weight.rows());

@@ -30,11 +30,14 @@ class ActorMLP {
   ActorMLP() = default;
   /// Builds the actor from validated parts and allocates the work buffers once.
   ActorMLP(std::vector<DenseLayer> layers, ObsNormalization norm, Eigen::VectorXf action_low,
-           Eigen::VectorXf action_high, bool squash, std::string obs_layout);
+           Eigen::VectorXf action_high, bool squash, std::string obs_layout,
+           std::string action_layout = "guidewire-nav/act/1");
 
   int obs_size() const { return obs_size_; }
   int action_size() const { return action_size_; }
   const std::string& obs_layout() const { return obs_layout_; }
+  /// What the actions mean: "guidewire-nav/act/1" (rotation, the paper's) or ".../act/2" (rotation, insertion).
+  const std::string& action_layout() const { return action_layout_; }
 
   /// obs (obs_size) -> action (action_size, written into `action`). No heap allocation.
   void act(const Eigen::Ref<const Eigen::VectorXf>& obs, Eigen::Ref<Eigen::VectorXf> action);
@@ -47,6 +50,7 @@ class ActorMLP {
   Eigen::VectorXf low_, high_;
   bool squash_ = true;
   std::string obs_layout_;
+  std::string action_layout_;
   int obs_size_ = 0, action_size_ = 0;
   std::vector<Eigen::VectorXf> buffers_;  // buffers_[0] = normalised obs, [i+1] = layer i output
 };

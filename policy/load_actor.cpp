@@ -72,6 +72,11 @@ ActorMLP parse_actor(const std::string& text, const std::string& src) {
     if (!j["obs_layout"].is_string()) fail(src, "obs_layout", "expected a string");
     layout = j["obs_layout"].get<std::string>();
   }
+  std::string action_layout = "guidewire-nav/act/1";  // actors exported before action layouts: rotation only
+  if (j.contains("action_layout")) {
+    if (!j["action_layout"].is_string()) fail(src, "action_layout", "expected a string");
+    action_layout = j["action_layout"].get<std::string>();
+  }
 
   const json& jl = need(j, "layers", src, "");
   if (!jl.is_array() || jl.empty()) fail(src, "layers", "expected a non-empty array");
@@ -123,7 +128,8 @@ ActorMLP parse_actor(const std::string& text, const std::string& src) {
   Eigen::VectorXf low = vec(need(out, "low", src, "output."), src, "output.low", action_size);
   Eigen::VectorXf high = vec(need(out, "high", src, "output."), src, "output.high", action_size);
   if ((high.array() < low.array()).any()) fail(src, "output.high", "below output.low");
-  return ActorMLP(std::move(layers), std::move(norm), std::move(low), std::move(high), squash, layout);
+  return ActorMLP(std::move(layers), std::move(norm), std::move(low), std::move(high), squash, layout,
+                  std::move(action_layout));
 }
 
 ActorMLP load_actor(const std::string& path) {

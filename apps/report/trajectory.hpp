@@ -60,6 +60,7 @@ struct EpisodeTrace {
   std::string recovery_outcome;       // one of kTraceOutcomes when recovery_attempts_allowed > 0
   std::string recovery_detail;
   std::vector<bool> retracting;       // optional, per frame: the env step that led to it pulled the wire back
+  std::vector<double> insertion;      // optional, per frame: the insertion action (act/2 tasks), in [-1, 1]
 };
 
 // The frame the strict episode ended at (strict_end_frame, or the last frame; 0 for an empty trace).

@@ -24,11 +24,19 @@ class PolicyController final : public Controller {
     if (actor_.obs_size() != size_)
       throw std::runtime_error(path + ": the actor takes " + std::to_string(actor_.obs_size()) + " observations, its layout " +
                                actor_.obs_layout() + " has " + std::to_string(size_));
-    if (actor_.action_size() != 1)
-      throw std::runtime_error(path + ": the actor outputs " + std::to_string(actor_.action_size()) +
-                               " actions, the task takes 1 (rotation)");
+    try {
+      action_layout_ = parse_action_layout(actor_.action_layout());
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error(path + ": the actor was trained on an unknown action: " + e.what());
+    }
+    if (actor_.action_size() != action_layout_size(action_layout_))
+      throw std::runtime_error(path + ": the actor outputs " + std::to_string(actor_.action_size()) + " actions, its layout " +
+                               actor_.action_layout() + " has " + std::to_string(action_layout_size(action_layout_)));
+    if (layout_.push_pull != (action_layout_ == ActionLayout::kRotationInsertion))
+      throw std::runtime_error(path + ": the actor's layouts do not go together: " + actor_.obs_layout() + " with " +
+                               actor_.action_layout() + " (obs/5 goes with act/2, the others with act/1)");
     obs_.resize(size_);
-    action_.resize(1);
+    action_.resize(actor_.action_size());
   }
   const std::string& name() const override { return name_; }
   void adapt(TaskConfig& config) const override {
@@ -37,17 +45,22 @@ class PolicyController final : public Controller {
     // An obs/4 actor needs combined junctions; an obs/3 one runs with either (the entries mean the same
     // on two-way forks), as the user set it.
     if (layout_.junctions == JunctionModel::kCombined) config.observation.junctions = JunctionModel::kCombined;
+    config.observation.push_pull = layout_.push_pull;
+    config.action = action_layout_;
   }
-  double act(const Observation& obs) override {
+  Action act(const Observation& obs) override {
     for (int i = 0; i < size_; ++i) obs_[i] = static_cast<float>(obs[static_cast<std::size_t>(i)]);
     actor_.act(obs_, action_);
-    return static_cast<double>(action_[0]);
+    Action a{static_cast<double>(action_[0]), 1.0};
+    if (action_.size() > 1) a.insertion = static_cast<double>(action_[1]);
+    return a;
   }
 
  private:
   std::string name_ = "sac-policy";
   ActorMLP actor_;
   ObservationLayout layout_;  // the actor's, from its JSON
+  ActionLayout action_layout_ = ActionLayout::kRotation;
   int size_ = 0;
   Eigen::VectorXf obs_, action_;
 };
@@ -55,7 +68,7 @@ class PolicyController final : public Controller {
 class PushOnlyController final : public Controller {
  public:
   const std::string& name() const override { return name_; }
-  double act(const Observation&) override { return 0.0; }
+  Action act(const Observation&) override { return {0.0, 1.0}; }
 
  private:
   std::string name_ = "push-only";
@@ -66,10 +79,10 @@ class ScriptedOmegaController final : public Controller {
   ScriptedOmegaController(double release, double turn)
       : name_(turn < 0 ? "scripted-omega-ccw" : "scripted-omega"), release_(release), turn_(turn) {}
   const std::string& name() const override { return name_; }
-  double act(const Observation& obs) override {
+  Action act(const Observation& obs) override {
     // omega = +1: the tip bends straight at the wrong branch; -1: straight away from it. Turning
     // one way at a constant rate sweeps the bend direction round until omega drops below release.
-    return scripted_omega_action(obs[obs_index::kOmega], release_, turn_);
+    return {scripted_omega_action(obs[obs_index::kOmega], release_, turn_), 1.0};
   }
 
  private:

@@ -1,7 +1,8 @@
 #pragma once
 // Who turns the wire during an episode: the SAC actor (Eigen runtime) or one of the two
 // baselines the results table compares it with. The task decides when an action is applied
-// (near bifurcations in trees); a controller only maps an observation to a rotation in [-1, 1].
+// (near bifurcations in trees); a controller maps an observation to a rotation in [-1, 1] and, for a
+// push/pull actor (action layout act/2), an insertion in [-1, 1] (the others leave it at +1).
 #include <memory>
 #include <string>
 
@@ -13,17 +14,17 @@ class Controller {
  public:
   virtual ~Controller() = default;
   virtual const std::string& name() const = 0;
-  // Rotation action in [-1, 1] for observation `obs`.
-  virtual double act(const Observation& obs) = 0;
+  // The action for observation `obs`.
+  virtual Action act(const Observation& obs) = 0;
   // Called before each episode: a controller reused across a batch forgets the last one here.
   virtual void begin_episode() {}
-  // Sets what the controller needs of the task's observation (an actor: the omega plane it was trained
-  // with). Build the task with the adapted config; baselines take the default.
+  // Sets what the controller needs of the task's observation and action (an actor: the layouts it was
+  // trained with). Build the task with the adapted config; baselines take the default.
   virtual void adapt(TaskConfig& /*config*/) const {}
 };
 
-// The exported SAC actor at `actor_path`. Throws std::runtime_error naming the file when it cannot
-// be loaded or was trained on another observation layout or size.
+// The exported SAC actor at `actor_path` (action layout act/1 or act/2, from its JSON). Throws
+// std::runtime_error naming the file when it cannot be loaded or its sizes do not match its layouts.
 std::unique_ptr<Controller> make_policy_controller(const std::string& actor_path);
 
 // Lower anchor 1: never rotates (the wire goes where its start orientation and the wall send it).

@@ -12,7 +12,7 @@ class ScheduleController final : public Controller {
   using Rule = std::function<double(const Observation&, int)>;
   ScheduleController(std::string name, Rule rule) : name_(std::move(name)), rule_(std::move(rule)) {}
   const std::string& name() const override { return name_; }
-  double act(const Observation& obs) override { return rule_(obs, step_++); }
+  Action act(const Observation& obs) override { return {rule_(obs, step_++), 1.0}; }
   void begin_episode() override { step_ = 0; }
 
  private:

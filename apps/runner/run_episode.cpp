@@ -1,5 +1,6 @@
 #include "apps/runner/run_episode.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -10,13 +11,17 @@
 namespace gw {
 namespace {
 
-void record_frame(const NavigationTask& task, const EpisodeState& s, const StepInfo& info, double action,
+// The observation entries a trace keeps: obs/3's twelve (every layout but obs/5), or all of obs/5's.
+int traced_entries(const TaskConfig& c) { return std::max(kSideObservationSize, c.observation.size()); }
+
+void record_frame(const NavigationTask& task, const EpisodeState& s, const StepInfo& info, const Action& action,
                   bool in_control, int frame, const TraceOptions& options, EpisodeTrace& trace) {
   trace.time_s.push_back(s.wire.time);
   trace.tip.push_back(s.tip);
-  trace.action.push_back(action);
+  trace.action.push_back(action.rotation);
+  if (task.config.action == ActionLayout::kRotationInsertion) trace.insertion.push_back(action.insertion);
   trace.agent_in_control.push_back(in_control);
-  trace.observation.emplace_back(s.obs.begin(), s.obs.end());
+  trace.observation.emplace_back(s.obs.begin(), s.obs.begin() + traced_entries(task.config));
   trace.goal.push_back(s.goal);
   trace.wall_force_peak_node_mN.push_back(info.wall_force_peak_node_mN);
   trace.wall_force_peak_total_mN.push_back(info.wall_force_peak_total_mN);
@@ -60,11 +65,11 @@ EpisodeTrace run_episode(const NavigationTask& task, int anatomy, int target_id,
   trace.controller = controller.name();
   trace.target_id = s.target_id;
   trace.seed = seed;
-  for (const char* name : observation_names()) trace.observation_names.emplace_back(name);
+  for (int i = 0; i < traced_entries(task.config); ++i) trace.observation_names.emplace_back(observation_names()[i]);
   const int attempts = task.config.recovery_attempts;
   trace.recovery_attempts_allowed = attempts;
   int frame = 0;
-  record_frame(task, s, StepInfo{}, 0.0, s.in_control, frame, options, trace);
+  record_frame(task, s, StepInfo{}, Action{0.0, 0.0}, s.in_control, frame, options, trace);
   // omega when the tip reached each bifurcation centre on the course (goal k belongs to bifurcation k).
   // (Their arcs are read from current_course: on a moving wall the course changes shape every step.)
   std::vector<double> omega_at_centre(s.course->bifurcations.size(), std::numeric_limits<double>::quiet_NaN());
@@ -72,7 +77,7 @@ EpisodeTrace run_episode(const NavigationTask& task, int anatomy, int target_id,
   bool strict_over = false;
   for (;;) {
     const bool in_control = s.in_control;
-    const double action = in_control ? controller.act(s.obs) : 0.0;
+    const Action action = in_control ? controller.act(s.obs) : Action{};
     const StepOutcome out = step_episode(task, s, action, {});
     ++frame;
     record_frame(task, s, out.info, action, in_control, frame, options, trace);

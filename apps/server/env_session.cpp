@@ -41,6 +41,10 @@ json info_json(const NavigationTask& task, const EpisodeState& s, const StepInfo
             {"inserted_mm", i.inserted_mm},
             {"contacts", i.contacts}};
   if (!i.problem.empty()) j["problem"] = i.problem;
+  if (task.config.recovery_attempts > 0) {  // the procedure goes on past the strict end (docs/recovery.md)
+    j["strict_end"] = i.strict_end;
+    j["recovery_attempts"] = i.recovery_attempts;
+  }
   return j;
 }
 
@@ -73,13 +77,18 @@ std::string spec_json(const NavigationTask& task) {
     if (scene && scene->motion) anatomies.back()["heart_rate_bpm"] = scene->motion->heart_rate_bpm;
   }
   const TaskConfig& c = task.config;
+  const bool push_pull = c.action == ActionLayout::kRotationInsertion;
+  const json action_space = push_pull ? json{{"shape", {2}}, {"low", {-1.0, -1.0}}, {"high", {1.0, 1.0}},
+                                             {"names", {"rotation", "insertion"}}}
+                                      : json{{"shape", {1}}, {"low", {-1.0}}, {"high", {1.0}}, {"names", {"rotation"}}};
   json j = {{"ok", true},
             {"protocol", kProtocolVersion},
             {"obs_layout", c.observation.name()},
+            {"action_layout", action_layout_name(c.action)},
             {"observation_space",
              {{"shape", {size}}, {"low", observation_json(low, size)}, {"high", observation_json(high, size)},
               {"names", names}}},
-            {"action_space", {{"shape", {1}}, {"low", {-1.0}}, {"high", {1.0}}, {"names", {"rotation"}}}},
+            {"action_space", action_space},
             {"anatomies", anatomies},
             {"task",
              {{"dt_s", c.dt_s},
@@ -100,7 +109,9 @@ std::string spec_json(const NavigationTask& task) {
                                 {"margin_mm", c.random_start_margin_mm}}},
               {"control_radius_mm", c.control_radius_mm},
               {"intermediate_target_mm", c.intermediate_target_mm},
-              {"success_radius_mm", c.success_radius_mm}}}};
+              {"success_radius_mm", c.success_radius_mm},
+              {"recovery_attempts", c.recovery_attempts},
+              {"reward_wrong_branch", c.reward_wrong_branch}}}};
   return j.dump();
 }
 
@@ -181,14 +192,20 @@ std::string EnvSession::handle(const std::string& line, bool& close_connection) 
       return json{{"ok", true}, {"obs", observation_json(state_.obs, task_.config.observation.size())}, {"info", info}}.dump();
     }
     if (cmd == "step") {
+      const std::size_t n = static_cast<std::size_t>(action_layout_size(task_.config.action));
+      const std::string expected = n == 1 ? "1 number (rotation)" : "2 numbers (rotation, insertion)";
       const auto ait = req.find("action");
-      if (ait == req.end() || !ait->is_array())
-        throw RequestError("step: \"action\" must be a list of 1 number");
-      if (ait->size() != 1)
-        throw RequestError("step: action has " + std::to_string(ait->size()) + " values, expected 1");
-      if (!(*ait)[0].is_number()) throw RequestError("step: action[0] is not a number");
-      const double a = (*ait)[0].get<double>();
-      if (!std::isfinite(a)) throw RequestError("step: action[0] is not finite");
+      if (ait == req.end() || !ait->is_array()) throw RequestError("step: \"action\" must be a list of " + expected);
+      if (ait->size() != n)
+        throw RequestError("step: action has " + std::to_string(ait->size()) + " values, expected " + expected);
+      double values[2] = {0.0, 1.0};
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::string which = "step: action[" + std::to_string(i) + "]";
+        if (!(*ait)[i].is_number()) throw RequestError(which + " is not a number");
+        values[i] = (*ait)[i].get<double>();
+        if (!std::isfinite(values[i])) throw RequestError(which + " is not finite");
+      }
+      const Action a{values[0], values[1]};
       if (!has_episode_) throw RequestError("step: no episode; send reset first");
       if (state_.done) throw RequestError("step: the episode is over; send reset");
       StepLimits limits;

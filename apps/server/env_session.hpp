@@ -4,6 +4,7 @@
 //   {"cmd":"spec"}                                   -> spaces, protocol and layout versions, anatomies
 //   {"cmd":"reset","seed":S,"options":{"anatomy":name|index,"target":id}}  -> obs, info
 //   {"cmd":"step","action":[a]}                      -> obs, reward, terminated, truncated, info
+//                                                       (act/2 tasks: [rotation, insertion])
 //   {"cmd":"close"}                                  -> {"ok":true}, then the connection closes
 // Every reply carries "ok"; failures carry "error" and leave the session usable.
 #include <cstdint>

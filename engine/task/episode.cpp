@@ -104,6 +104,13 @@ void observe(const NavigationTask& task, EpisodeState& s, bool first) {
     ++s.goal;
     goal_changed = true;
   }
+  // act/2: a wire the actor pulls back behind a hand-over point gets that goal back (act/1 never pulls but
+  // for recovery, whose end_retraction sets the goal).
+  while (c.action == ActionLayout::kRotationInsertion && s.goal > 0 &&
+         tip_arc < course.goal_arc[static_cast<size_t>(s.goal - 1)]) {
+    --s.goal;
+    goal_changed = true;
+  }
   s.lambda_mm = std::max(0.0, course.lambda_arc[static_cast<size_t>(s.goal)] - tip_arc);
   if (goal_changed) s.lambda0_mm = std::max(s.lambda_mm, 1e-3);
   o[obs_index::kLambdaPrev] = goal_changed ? lambda_ratio(c, s) : previous_ratio;
@@ -210,7 +217,10 @@ EpisodeState reset_episode(const NavigationTask& task, int anatomy, int target_i
   observe(task, s, true);
   draw_random_start(task, rng, s);
   s.obs[obs_index::kAction] = 0.0;
+  s.obs[obs_index::kInsertion] = 1.0;
+  s.obs[obs_index::kWrongBranch] = 0.0;
   s.best_progress_mm = s.progress_mm;
+  s.inserted_at_best_mm = s.wire.inserted_length_mm;
   s.procedure_max_steps =
       s.max_steps + (c.recovery_attempts > 0 ? static_cast<int>(std::ceil(c.recovery_time_s / env_dt(c))) : 0);
   return s;
@@ -272,17 +282,85 @@ void end_retraction(const NavigationTask& task, EpisodeState& s) {
   s.best_progress_step = s.steps;
 }
 
+// act/2 (push/pull): the end of step_episode once the tip's wrong-branch test (`lost`) is known. The strict
+// end is the paper's (first wrong branch, a stall, the step limit); with recovery_attempts K > 0 the procedure
+// goes on under the actor: a stall no longer ends it, an entry into a wrong child uses one of K retries and
+// the one after the K-th ends it, recovery_time_s past the step limit bounds it (task_config.hpp).
+StepOutcome end_push_pull_step(const NavigationTask& task, EpisodeState& s, int lost, double rotation, double insertion,
+                               StepOutcome& out) {
+  const TaskConfig& c = task.config;
+  const bool entered = lost >= 0 && !s.in_wrong_branch;
+  s.in_wrong_branch = lost >= 0;
+  s.obs[obs_index::kWrongBranch] = s.in_wrong_branch ? 1.0 : 0.0;
+  s.in_control = s.in_control || s.in_wrong_branch;  // an actor in a wrong child must be able to pull out
+  out.info.in_control = s.in_control;
+  out.obs = s.obs;
+  out.reward = push_pull_reward(s.obs[obs_index::kOmega], s.obs[obs_index::kLambda], rotation, insertion,
+                                s.in_wrong_branch, c.reward_wrong_branch, c.reward);
+  if (c.reward_force_per_N > 0) out.reward -= c.reward_force_per_N * 1e-3 * out.info.wall_force_peak_total_mN;
+
+  // A stall is wire pushed in without progress: stuck_steps pushes at the full speed (the strict rule's 24 mm
+  // under the constant push) since the tip last gained stuck_progress_mm. An actor that stops to aim does not
+  // stall; one that keeps pushing a buckling wire, or pushes on along a wrong child, does.
+  const double stall_mm = c.stuck_steps * env_dt(c) * c.push_mm_per_s;
+  const bool stalled = s.wire.inserted_length_mm - s.inserted_at_best_mm >= stall_mm;
+  out.terminated = out.info.success || out.info.wrong_branch;
+  if (!out.terminated) {
+    out.info.step_limit = s.steps >= (s.strict_over ? s.procedure_max_steps : s.max_steps);
+    out.info.stuck = stalled;
+    out.info.wire_exhausted = s.wire.inserted_length_mm >= task.wire.params.length_mm - c.wire_reserve_mm;
+    out.truncated = out.info.step_limit || out.info.stuck || out.info.wire_exhausted;
+  }
+  out.info.strict_end = !s.strict_over && (out.terminated || out.truncated);
+  s.strict_over = s.strict_over || out.info.strict_end;
+  if (c.recovery_attempts > 0 && !out.info.success && !out.info.wire_exhausted) {
+    const bool time_left = s.steps < s.procedure_max_steps;
+    bool failed = !time_left;
+    if (entered) {
+      if (s.recovery_attempts_used < c.recovery_attempts)
+        ++s.recovery_attempts_used;
+      else
+        failed = true;
+    }
+    // A tip still in the child it entered earlier goes on; so does the step that ended the strict episode
+    // (its flags say why, for the strict columns) unless it ends the procedure too. A stall ends it.
+    const bool strict_flags[3] = {lost >= 0, stalled, s.steps >= s.max_steps};
+    out.info.wrong_branch = entered && failed;
+    out.info.stuck = stalled;
+    out.info.step_limit = !time_left;
+    out.terminated = out.info.wrong_branch;
+    out.truncated = !out.terminated && (failed || stalled);
+    if (out.info.strict_end && !out.terminated && !out.truncated) {  // the strict end's own verdict
+      out.info.wrong_branch = strict_flags[0];
+      out.info.stuck = strict_flags[1];
+      out.info.step_limit = strict_flags[2];
+    }
+  }
+  out.info.recovery_attempts = s.recovery_attempts_used;
+  s.done = out.terminated || out.truncated;
+  return out;
+}
+
 }  // namespace
 
-StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, double action, const StepLimits& limits) {
-  if (!std::isfinite(action)) throw std::invalid_argument("action is not a finite number");
+StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, double rotation, const StepLimits& limits) {
+  return step_episode(task, s, Action{rotation, 1.0}, limits);
+}
+
+StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, const Action& action, const StepLimits& limits) {
+  if (!std::isfinite(action.rotation)) throw std::invalid_argument("action is not a finite number");
+  if (!std::isfinite(action.insertion)) throw std::invalid_argument("insertion action is not a finite number");
   if (s.done) throw std::logic_error("the episode is over; reset before stepping");
   if (!s.course) throw std::logic_error("episode was never reset");
   const TaskConfig& c = task.config;
   const Anatomy& anatomy = task.anatomies[static_cast<size_t>(s.anatomy)];
   const bool retracting = s.retracting;
-  const double applied = s.in_control && !retracting ? std::clamp(action, -1.0, 1.0) : 0.0;
-  Control control{c.push_mm_per_s, applied * c.max_rotation_rad_per_s + disturbance_rate(c, s)};
+  const bool push_pull = c.action == ActionLayout::kRotationInsertion;
+  const double applied = s.in_control && !retracting ? std::clamp(action.rotation, -1.0, 1.0) : 0.0;
+  // act/2 in control: the actor's insertion, not pulling the wire out past its start insertion.
+  double insertion = push_pull && s.in_control ? std::clamp(action.insertion, -1.0, 1.0) : 1.0;
+  if (insertion < 0 && s.wire.inserted_length_mm <= c.initial_insertion_mm) insertion = 0.0;
+  Control control{insertion * c.push_mm_per_s, applied * c.max_rotation_rad_per_s + disturbance_rate(c, s)};
   if (retracting) {
     control.push_mm_per_s = -c.recovery_pull_mm_per_s;
     if (s.turn_steps_left > 0) {  // pull-back k turns by k * recovery_turn_rad at the full rotation rate
@@ -347,6 +425,7 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, double act
 
   observe(task, s, false);
   s.obs[obs_index::kAction] = applied;
+  s.obs[obs_index::kInsertion] = control.push_mm_per_s / c.push_mm_per_s;
   out.obs = s.obs;
   out.reward = navigation_reward(s.obs[obs_index::kOmega], s.obs[obs_index::kLambda], applied, c.reward);
   if (c.reward_force_per_N > 0) out.reward -= c.reward_force_per_N * 1e-3 * peak.total_mN;
@@ -373,6 +452,7 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, double act
   if (s.progress_mm > s.best_progress_mm + c.stuck_progress_mm) {
     s.best_progress_mm = s.progress_mm;
     s.best_progress_step = s.steps;
+    s.inserted_at_best_mm = s.wire.inserted_length_mm;
   }
   out.info = episode_info(task, s);
   fill_force(out.info);
@@ -380,6 +460,7 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, double act
   const Anatomy& geometry = s.shape.valid ? s.shape.anatomy : anatomy;  // the moving wall's, at this time
   const int lost = out.info.success ? -1 : wrong_branch_entered(c, geometry, current_course(s), s.tip, s.course_distance_mm);
   out.info.wrong_branch = lost >= 0;
+  if (push_pull) return end_push_pull_step(task, s, lost, applied, insertion, out);
   out.terminated = out.info.success || out.info.wrong_branch;
   if (!out.terminated) {
     out.info.step_limit = s.steps >= (s.strict_over ? s.procedure_max_steps : s.max_steps);

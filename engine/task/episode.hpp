@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 
+#include "engine/task/action_layout.hpp"
 #include "engine/task/course_shape.hpp"
 #include "engine/task/navigation_task.hpp"
 #include "engine/task/observation.hpp"
@@ -50,6 +51,8 @@ struct EpisodeState {
   int retract_steps_left = 0;      // bound on one pull-back (a wire caught on the wall stops pulling)
   int turn_steps_left = 0;         // env steps of the recovery turn still to apply
   int procedure_max_steps = 0;     // step limit with recovery: max_steps + recovery_time_s; else max_steps
+  bool in_wrong_branch = false;    // act/2: the tip was in a wrong child at the last step (obs entry wrong_branch)
+  double inserted_at_best_mm = 0.0;  // the wire's insertion when best_progress_mm was last raised (act/2 stall)
   TipSamples samples;              // scratch, kept here so stepping does not allocate
   // Moving wall (issue 36): the course in the wall's shape at the last observation's time (wire.time),
   // which the observation, the control spheres and the end tests read (current_course). Arcs (progress_mm,
@@ -111,8 +114,13 @@ EpisodeState reset_episode(const NavigationTask& task, int anatomy, int target_i
 // Info describing the current state (what reset reports).
 StepInfo episode_info(const NavigationTask& task, const EpisodeState& state);
 
-// One env step with `action` in [-1, 1] (clipped; ignored while !state.in_control). Throws
-// std::invalid_argument for a non-finite action and std::logic_error when the episode is over.
-StepOutcome step_episode(const NavigationTask& task, EpisodeState& state, double action, const StepLimits& limits = {});
+// One env step with `action` (each value clipped to [-1, 1]; ignored while !state.in_control, when the
+// task pushes at +1 and does not turn). act/1 tasks read only the rotation and push at the constant speed;
+// act/2 tasks (push/pull) also apply the insertion, never pulling the wire back past its start insertion.
+// Throws std::invalid_argument for a non-finite value and std::logic_error when the episode is over.
+StepOutcome step_episode(const NavigationTask& task, EpisodeState& state, const Action& action,
+                         const StepLimits& limits = {});
+// The paper's action: the rotation alone, pushing at the constant speed.
+StepOutcome step_episode(const NavigationTask& task, EpisodeState& state, double rotation, const StepLimits& limits = {});
 
 }  // namespace gw

@@ -9,7 +9,8 @@ namespace gw {
 const std::array<const char*, kObservationSize>& observation_names() {
   static const std::array<const char*, kObservationSize> names = {
       "theta_t_1", "theta_t_2", "theta_t_3", "theta_prev_1", "theta_prev_2", "theta_prev_3",
-      "lambda_t",  "lambda_prev", "action",  "omega",        "speed",        "omega_side"};
+      "lambda_t",  "lambda_prev", "action",  "omega",        "speed",        "omega_side",
+      "insertion", "wrong_branch"};
   return names;
 }
 
@@ -22,6 +23,10 @@ void observation_bounds(const TaskConfig& config, Observation& low, Observation&
   high[obs_index::kLambda] = high[obs_index::kLambdaPrev] = config.max_lambda_ratio;
   low[obs_index::kAction] = low[obs_index::kOmega] = low[obs_index::kOmegaSide] = -1.0;
   high[obs_index::kAction] = high[obs_index::kOmega] = high[obs_index::kOmegaSide] = 1.0;
+  low[obs_index::kInsertion] = -1.0;
+  high[obs_index::kInsertion] = 1.0;
+  low[obs_index::kWrongBranch] = 0.0;
+  high[obs_index::kWrongBranch] = 1.0;
   low[obs_index::kSpeed] = -config.max_abs_speed_ratio;
   high[obs_index::kSpeed] = config.max_abs_speed_ratio;
 }

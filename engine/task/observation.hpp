@@ -29,6 +29,12 @@
 //                        2nd bifurcation) a small residual rotation carries it past -1 and on round. With the
 //                        sign the aim is a stable set point: rotate towards the side that lowers omega. The
 //                        shipped actor is obs/3 (policy/trained/README.md).
+//   [12]    insertion    the insertion action applied during the last env step, in [-1, 1] (obs/5 only; 1 when
+//                        the task pushed: outside the control zone, or an act/1 task)
+//   [13]    wrong_branch 1 while the tip is in a wrong child (the task's wrong-branch test,
+//                        wrong_branch_entered.hpp), else 0 (obs/5 only). Why: an actor that may pull back must
+//                        know it went the wrong way, as a clinician sees it on the fluoroscope; the paper's
+//                        entries barely change once the tip is in a wrong child
 // Why 3 products t_i . c_i and not the figure's 3x3 t_i . c_j: the text defines theta_i = t_i . c_i
 // explicitly and calls theta an N-vector; the 6 off-diagonal products add mostly c_i . c_j-like terms,
 // i.e. the local curvature of the centerline itself, which is the anatomy-specific information the
@@ -47,7 +53,7 @@ using Observation = std::array<double, kObservationSize>;
 
 namespace obs_index {
 inline constexpr int kTheta = 0, kThetaPrev = 3, kLambda = 6, kLambdaPrev = 7, kAction = 8, kOmega = 9, kSpeed = 10,
-                     kOmegaSide = 11;
+                     kOmegaSide = 11, kInsertion = 12, kWrongBranch = 13;
 }
 
 // Names of the entries, e.g. "theta_t_1", "lambda_prev", "omega".

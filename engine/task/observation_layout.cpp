@@ -14,27 +14,36 @@ struct Layout {
   OmegaPlane plane;
   bool omega_side;
   JunctionModel junctions;
+  bool push_pull;
 };
-constexpr Layout kLayouts[] = {{"guidewire-nav/obs/1", OmegaPlane::kCorrectBranch, false, JunctionModel::kSeparate},
-                               {"guidewire-nav/obs/2", OmegaPlane::kApproach, false, JunctionModel::kSeparate},
-                               {"guidewire-nav/obs/3", OmegaPlane::kApproach, true, JunctionModel::kSeparate},
-                               {"guidewire-nav/obs/4", OmegaPlane::kApproach, true, JunctionModel::kCombined}};
+// obs/5 is obs/3 with the push/pull actor's two entries (act/2) after omega_side.
+constexpr Layout kLayouts[] = {
+    {"guidewire-nav/obs/1", OmegaPlane::kCorrectBranch, false, JunctionModel::kSeparate, false},
+    {"guidewire-nav/obs/2", OmegaPlane::kApproach, false, JunctionModel::kSeparate, false},
+    {"guidewire-nav/obs/3", OmegaPlane::kApproach, true, JunctionModel::kSeparate, false},
+    {"guidewire-nav/obs/4", OmegaPlane::kApproach, true, JunctionModel::kCombined, false},
+    {"guidewire-nav/obs/5", OmegaPlane::kApproach, true, JunctionModel::kSeparate, true}};
 }  // namespace
 
 const char* ObservationLayout::name() const {
   for (const Layout& l : kLayouts)
-    if (l.plane == omega_plane && l.omega_side == omega_side && l.junctions == junctions) return l.name;
+    if (l.plane == omega_plane && l.omega_side == omega_side && l.junctions == junctions && l.push_pull == push_pull)
+      return l.name;
+  if (push_pull)
+    throw std::invalid_argument("the push/pull entries need omega's plane 'approach', omega_side and separate junctions (layout obs/5)");
   if (omega_side && omega_plane != OmegaPlane::kApproach)
     throw std::invalid_argument("omega_side needs omega's plane 'approach' (no layout has it in the paper's plane)");
   throw std::invalid_argument("combined junctions need omega's plane 'approach' and omega_side (layout obs/4)");
 }
 
-int ObservationLayout::size() const { return omega_side ? kObservationSize : kPaperObservationSize; }
+int ObservationLayout::size() const {
+  return push_pull ? kObservationSize : omega_side ? kSideObservationSize : kPaperObservationSize;
+}
 
 ObservationLayout ObservationLayout::parse(const std::string& name) {
   std::string known;
   for (const Layout& l : kLayouts) {
-    if (name == l.name) return {l.plane, l.omega_side, l.junctions};
+    if (name == l.name) return {l.plane, l.omega_side, l.junctions, l.push_pull};
     known += std::string(known.empty() ? "" : ", ") + l.name;
   }
   throw std::invalid_argument("observation layout '" + name + "' is not one of " + known);

@@ -7,14 +7,17 @@
 //   guidewire-nav/obs/2  omega in the approach plane, 11 entries (TaskConfig's default)
 //   guidewire-nav/obs/3  obs/2 + omega_side, 12 entries (the shipped actor)
 //   guidewire-nav/obs/4  obs/3 with junctions combined (docs/junctions.md), 12 entries
+//   guidewire-nav/obs/5  obs/3 + the last insertion action and a wrong-branch flag, 14 entries: the push/pull
+//                        actor's (action layout act/2, action_layout.hpp; docs/recovery.md)
 #include <string>
 
 namespace gw {
 
 inline constexpr int kThetaCount = 3;
 // Every entry is computed on every step; a layout hands its first size() entries to the actor.
-inline constexpr int kObservationSize = 2 * kThetaCount + 6;
-inline constexpr int kPaperObservationSize = kObservationSize - 1;  // obs/1, obs/2: without omega_side
+inline constexpr int kObservationSize = 2 * kThetaCount + 8;
+inline constexpr int kPaperObservationSize = 2 * kThetaCount + 5;  // obs/1, obs/2: without omega_side
+inline constexpr int kSideObservationSize = kPaperObservationSize + 1;  // obs/3, obs/4: with omega_side
 
 // The plane omega is measured in (observation.hpp, omega).
 enum class OmegaPlane {
@@ -42,11 +45,13 @@ struct ObservationLayout {
   OmegaPlane omega_plane = OmegaPlane::kApproach;  // kCorrectBranch = the paper's definition (obs/1)
   bool omega_side = false;                         // obs/3, obs/4: omega's sine as a twelfth entry
   JunctionModel junctions = JunctionModel::kSeparate;  // kCombined: obs/4
+  bool push_pull = false;                          // obs/5: the insertion action and the wrong-branch flag
+                                                   // as entries 13 and 14 (the act/2 actor's)
 
   // The layout's name; throws std::invalid_argument for a combination no layout has (omega_side in the
-  // paper's plane; combined junctions without omega_side), naming why.
+  // paper's plane; combined junctions without omega_side; push/pull entries without obs/3), naming why.
   const char* name() const;
-  // How many leading observation entries the actor takes: 11, or 12 with omega_side.
+  // How many leading observation entries the actor takes: 11, 12 with omega_side, 14 with push_pull.
   int size() const;
   // The layout called `name`; throws std::invalid_argument naming the known layouts.
   static ObservationLayout parse(const std::string& name);

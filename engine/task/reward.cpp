@@ -1,14 +1,31 @@
 #include "engine/task/reward.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace gw {
 
+namespace {
+// Eq. 3's three terms.
+double orientation_term(double omega, const RewardShape& shape) {
+  return 2.0 / (1.0 + std::exp(shape.omega_slope * (omega - shape.omega_centre))) - 1.0;
+}
+double progress_term(double lambda_ratio) { return 0.5 * (1.0 - lambda_ratio); }
+double effort_term(double rotation) { return -0.2 * std::abs(rotation); }
+}  // namespace
+
 double navigation_reward(double omega, double lambda_ratio, double action, const RewardShape& shape) {
-  const double orientation = 2.0 / (1.0 + std::exp(shape.omega_slope * (omega - shape.omega_centre))) - 1.0;
-  const double progress = 0.5 * (1.0 - lambda_ratio);
-  const double effort = -0.2 * std::abs(action);
+  const double orientation = orientation_term(omega, shape);
+  const double progress = progress_term(lambda_ratio);
+  const double effort = effort_term(action);
   return orientation + progress + effort;
+}
+
+double push_pull_reward(double omega, double lambda_ratio, double rotation, double insertion, bool in_wrong_branch,
+                        double wrong_branch_cost, const RewardShape& shape) {
+  const double forward = std::clamp(insertion, 0.0, 1.0);
+  return forward * (orientation_term(omega, shape) + progress_term(lambda_ratio)) + effort_term(rotation) -
+         (in_wrong_branch ? wrong_branch_cost : 0.0);
 }
 
 }  // namespace gw

@@ -16,4 +16,13 @@ struct RewardShape {
 // `lambda_ratio` is lambda_t / lambda_0, `action` the applied rotation action in [-1, 1].
 double navigation_reward(double omega, double lambda_ratio, double action, const RewardShape& shape = {});
 
+// The push/pull actor's reward (action layout act/2): the paper's orientation and progress terms earned in
+// proportion to the forward insertion max(0, insertion) in [0, 1], the rotation effort as in Eq. 3, less
+// `wrong_branch_cost` while the tip is in a wrong child. Why: with the speed in the actor's hands, Eq. 3's
+// positive terms pay for every step, so holding still while aimed would pay forever; weighted by the
+// insertion, stopping pays nothing and pushing pays what the paper's constant push paid. At insertion 1 and
+// outside a wrong child it is Eq. 3.
+double push_pull_reward(double omega, double lambda_ratio, double rotation, double insertion, bool in_wrong_branch,
+                        double wrong_branch_cost, const RewardShape& shape = {});
+
 }  // namespace gw

@@ -3,6 +3,7 @@
 // its value. The task model (NavigationTask) holds one; episodes never change it.
 #include <string>
 
+#include "engine/task/action_layout.hpp"
 #include "engine/task/observation_layout.hpp"
 #include "engine/task/reward.hpp"
 
@@ -41,6 +42,9 @@ struct TaskConfig {
   double initial_insertion_mm = 2.0;     // tip this far past the inlet at reset
   double max_start_tilt_rad = 0.1745329251994330;  // random start orientation: up to 10 deg off the
                                          // inlet direction (random azimuth), paper 2.2.2
+  ActionLayout action = ActionLayout::kRotation;  // act/1: the paper's constant push, the action turns the
+                                         // wire; act/2: the actor also sets the insertion speed in the control
+                                         // zone (push/pull, docs/recovery.md); needs observation obs/5
   // --- Observation (layout in observation.hpp) ---
   double tip_sample_spacing_mm = 2.0;    // t_1..t_3 at 0, 2, 4 mm from the tip: spans the 6 mm curved
                                          // tip with several "grating" samples (paper: robustness to
@@ -115,6 +119,15 @@ struct TaskConfig {
                                          // the same approach (half turns: the 3rd retry repeats the 1st)
   double recovery_time_s = 30.0;         // simulated seconds allowed past the strict step limit (3 attempts
                                          // of ~2.5 s back and ~2.5 s forward each fit with room)
+  // Under act/2 the actor recovers by itself: nothing is pulled for it. With K > 0 the strict end is reported
+  // as above and the procedure goes on under the actor, which may pull back out of the wrong child; its
+  // (K+1)-th entry into a wrong child ends the procedure as a failure, and the same recovery_time_s bounds it.
+  // A stall under act/2 is wire pushed in without progress (stuck_steps full-speed pushes, 24 mm: the strict
+  // rule under the constant push), so stopping to aim is not one; it ends the strict episode and the procedure.
+  // StepInfo::recovery_attempts counts the entries into a wrong child that the procedure went on after.
+  // The act/2 reward (reward.hpp, push_pull_reward): the paper's terms earned in proportion to the forward
+  // insertion, less this per env step while the tip is in a wrong child.
+  double reward_wrong_branch = 1.0;
   // --- Force penalty (issue 37 item 4; 0 = the paper's reward, Eq. 3) ---
   // Each env step's reward loses this times the step's peak total wall force in newtons (StepInfo::
   // wall_force_peak_total_mN / 1000): a wire pressed on the wall at 1.5 N (the vessel-rupture threshold

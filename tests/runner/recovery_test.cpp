@@ -32,12 +32,12 @@ class WrongThenRight : public gw::Controller {
  public:
   const std::string& name() const override { return name_; }
   void begin_episode() override { last_lambda_ = 10, right_ = false; }
-  double act(const gw::Observation& obs) override {
+  gw::Action act(const gw::Observation& obs) override {
     const double lambda = obs[gw::obs_index::kLambda];
     right_ = right_ || lambda > last_lambda_ + 0.2;
     last_lambda_ = lambda;
-    if (right_) return obs[gw::obs_index::kOmega] > -0.95 ? 1.0 : 0.0;
-    return obs[gw::obs_index::kOmega] < 0.95 ? 1.0 : 0.0;
+    if (right_) return {obs[gw::obs_index::kOmega] > -0.95 ? 1.0 : 0.0, 1.0};
+    return {obs[gw::obs_index::kOmega] < 0.95 ? 1.0 : 0.0, 1.0};
   }
 
  private:
@@ -49,7 +49,7 @@ class WrongThenRight : public gw::Controller {
 class AimAtWrongBranch : public gw::Controller {
  public:
   const std::string& name() const override { return name_; }
-  double act(const gw::Observation& obs) override { return obs[gw::obs_index::kOmega] < 0.95 ? 1.0 : 0.0; }
+  gw::Action act(const gw::Observation& obs) override { return {obs[gw::obs_index::kOmega] < 0.95 ? 1.0 : 0.0, 1.0}; }
 
  private:
   std::string name_ = "aim-at-wrong";

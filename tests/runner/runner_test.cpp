@@ -121,16 +121,16 @@ TEST_CASE("plan_episodes: unknown targets and bad counts are clear errors", "[ru
 }
 
 TEST_CASE("controllers: names and missing policy files", "[runner]") {
-  CHECK(gw::make_controller("push-only", "")->act(gw::Observation{}) == 0.0);
+  CHECK(gw::make_controller("push-only", "")->act(gw::Observation{}).rotation == 0.0);
   CHECK_THROWS_WITH(gw::make_controller("pid", ""), Catch::Contains("'pid'"));
   CHECK_THROWS_WITH(gw::make_controller("pid", ""), Catch::Contains("spin+1"));
   // A rotation schedule is a controller too; reused across a batch, it restarts with each episode.
   auto wiggle = gw::make_controller("wiggle", "");
   CHECK(wiggle->name() == "wiggle");
   wiggle->act(gw::Observation{});
-  CHECK(wiggle->act(gw::Observation{}) != 0.0);
+  CHECK(wiggle->act(gw::Observation{}).rotation != 0.0);
   wiggle->begin_episode();
-  CHECK(wiggle->act(gw::Observation{}) == 0.0);
+  CHECK(wiggle->act(gw::Observation{}).rotation == 0.0);
   CHECK_THROWS_WITH(gw::make_controller("policy", "/nonexistent/actor.json"),
                     Catch::Contains("/nonexistent/actor.json"));
 }
@@ -228,7 +228,7 @@ namespace {
 class AimAtWrongBranch : public gw::Controller {
  public:
   const std::string& name() const override { return name_; }
-  double act(const gw::Observation& obs) override { return obs[gw::obs_index::kOmega] < 0.95 ? 1.0 : 0.0; }
+  gw::Action act(const gw::Observation& obs) override { return {obs[gw::obs_index::kOmega] < 0.95 ? 1.0 : 0.0, 1.0}; }
 
  private:
   std::string name_ = "aim-at-wrong";
@@ -393,13 +393,13 @@ TEST_CASE("controllers: the scripted omega rule in both turn directions", "[runn
   CHECK(ccw->name() == "scripted-omega-ccw");
   for (double omega : {1.0, 0.0, -0.94}) {  // not yet aimed: full rate, each its own way
     obs[gw::obs_index::kOmega] = omega;
-    CHECK(cw->act(obs) == 1.0);
-    CHECK(ccw->act(obs) == -1.0);
+    CHECK(cw->act(obs).rotation == 1.0);
+    CHECK(ccw->act(obs).rotation == -1.0);
   }
   for (double omega : {-0.95, -1.0}) {  // aimed: both hold
     obs[gw::obs_index::kOmega] = omega;
-    CHECK(cw->act(obs) == 0.0);
-    CHECK(ccw->act(obs) == 0.0);
+    CHECK(cw->act(obs).rotation == 0.0);
+    CHECK(ccw->act(obs).rotation == 0.0);
   }
   CHECK_THROWS_AS(gw::make_scripted_omega_controller(-0.95, 0.5), std::invalid_argument);
   CHECK_THROWS_WITH(gw::make_controller("scripted-omega-cw", ""), Catch::Contains("scripted-omega-ccw"));
@@ -652,16 +652,16 @@ TEST_CASE("rotation schedules: the family, their rules, unknown names", "[runner
   CHECK(gw::rotation_schedule_names().size() == 8);
   gw::Observation obs{};
   obs[gw::obs_index::kOmega] = 0.5;  // tip bent towards the wrong branch
-  CHECK(gw::make_rotation_schedule("aim-0.95")->act(obs) == 1.0);
-  CHECK(gw::make_rotation_schedule("aim-0.95-ccw")->act(obs) == -1.0);
+  CHECK(gw::make_rotation_schedule("aim-0.95")->act(obs).rotation == 1.0);
+  CHECK(gw::make_rotation_schedule("aim-0.95-ccw")->act(obs).rotation == -1.0);
   obs[gw::obs_index::kOmega] = -0.8;
-  CHECK(gw::make_rotation_schedule("aim-0.95")->act(obs) == 1.0);
-  CHECK(gw::make_rotation_schedule("aim-0.7")->act(obs) == 0.0);  // aimed well enough: hold
-  CHECK(gw::make_rotation_schedule("spin-0.3")->act(obs) == -0.3);
+  CHECK(gw::make_rotation_schedule("aim-0.95")->act(obs).rotation == 1.0);
+  CHECK(gw::make_rotation_schedule("aim-0.7")->act(obs).rotation == 0.0);  // aimed well enough: hold
+  CHECK(gw::make_rotation_schedule("spin-0.3")->act(obs).rotation == -0.3);
   auto wiggle = gw::make_rotation_schedule("wiggle");
-  CHECK(wiggle->act(obs) == 0.0);
-  CHECK(wiggle->act(obs) == Approx(std::sin(0.3)));
-  CHECK(gw::make_rotation_schedule("wiggle")->act(obs) == 0.0);  // a fresh one starts again
+  CHECK(wiggle->act(obs).rotation == 0.0);
+  CHECK(wiggle->act(obs).rotation == Approx(std::sin(0.3)));
+  CHECK(gw::make_rotation_schedule("wiggle")->act(obs).rotation == 0.0);  // a fresh one starts again
   CHECK_THROWS_WITH(gw::make_rotation_schedule("spin+2"), Catch::Contains("known: aim-0.95"));
 }
 

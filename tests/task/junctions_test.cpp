@@ -219,7 +219,7 @@ TEST_CASE("layout obs/4 is obs/3 with combined junctions", "[task][junctions]") 
   CHECK(c.omega_side);
   CHECK(c.omega_plane == gw::OmegaPlane::kApproach);
   CHECK(std::string(c.name()) == "guidewire-nav/obs/4");
-  CHECK(c.size() == gw::kObservationSize);
+  CHECK(c.size() == gw::kSideObservationSize);
   c = gw::ObservationLayout::parse("guidewire-nav/obs/3");
   CHECK(c.junctions == gw::JunctionModel::kSeparate);
   c.omega_side = false;

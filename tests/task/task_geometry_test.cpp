@@ -223,7 +223,7 @@ TEST_CASE("reward sigmoid can be shifted and steepened", "[task]") {
 }
 
 TEST_CASE("observation layout is fixed and bounded", "[task]") {
-  CHECK(gw::kObservationSize == 12);
+  CHECK(gw::kObservationSize == 14);
   CHECK(std::string(gw::TaskConfig{}.observation.name()) == "guidewire-nav/obs/2");  // the task's default
   gw::ObservationLayout layout;
   layout.omega_plane = gw::OmegaPlane::kCorrectBranch;
@@ -235,6 +235,14 @@ TEST_CASE("observation layout is fixed and bounded", "[task]") {
   layout.omega_side = true;
   CHECK(std::string(layout.name()) == "guidewire-nav/obs/3");
   CHECK(layout.size() == 12);
+  layout.push_pull = true;  // the push/pull actor's layout: obs/3 and two entries
+  CHECK(std::string(layout.name()) == "guidewire-nav/obs/5");
+  CHECK(layout.size() == 14);
+  CHECK(gw::ObservationLayout::parse("guidewire-nav/obs/5").push_pull);
+  layout.omega_side = false;  // not without omega's sine
+  CHECK_THROWS_WITH(layout.name(), Catch::Contains("obs/5"));
+  layout.omega_side = true;
+  layout.push_pull = false;
   layout.omega_plane = gw::OmegaPlane::kCorrectBranch;  // no layout has the sine in the paper's plane
   CHECK_THROWS_WITH(layout.name(), Catch::Contains("approach"));
   for (const char* name : {"guidewire-nav/obs/1", "guidewire-nav/obs/2", "guidewire-nav/obs/3"})

@@ -12,8 +12,10 @@ Observation: 11 float32 values (engine/task/observation.hpp): theta_t (3), theta
 lambda_t, lambda_{t-n dt}, a_t, omega, s. Layout "guidewire-nav/obs/2" (omega in the approach plane,
 the server's default) or "guidewire-nav/obs/1" (the paper's omega: ``server_args=["--omega-plane",
 "correct_branch"]``); "guidewire-nav/obs/3" (``server_args=["--omega-side"]``) adds a twelfth, omega's
-sine. The exported actor records which one it was trained on.  Action: one float in
-[-1, 1], the proximal rotation rate as a fraction of the maximum.  Reward: paper Eq. 3.
+sine; "guidewire-nav/obs/5" (``server_args=["--push-pull"]``) adds the last insertion and a wrong-branch flag.
+The exported actor records which one it was trained on.  Action (the spec's ``action_layout``): one float in
+[-1, 1], the proximal rotation rate as a fraction of the maximum ("guidewire-nav/act/1", paper Eq. 3's reward);
+with ``--push-pull`` two, rotation and insertion speed ("guidewire-nav/act/2", engine/task/reward.hpp).
 Info after a step: the server's fields (anatomy, target, success, wrong_branch, stuck, step_limit, ...)
 and ``is_success`` (= success; the name SB3 reads).
 
@@ -197,12 +199,13 @@ class GuidewireEnv(gym.Env):
 
     def step(self, action):
         a = np.asarray(action, dtype=np.float64).reshape(-1)
-        if a.size != 1:
-            raise ValueError(f"action must hold 1 value, got {a.size}")
-        value = float(a[0])
-        if not math.isfinite(value):
-            raise ValueError(f"action is not finite: {value}")
-        reply = self._request({"cmd": "step", "action": [value]})
+        n = int(self.action_space.shape[0])
+        if a.size != n:
+            raise ValueError(f"action must hold {n} value{'s' if n > 1 else ''}, got {a.size}")
+        values = [float(v) for v in a]
+        if not all(math.isfinite(v) for v in values):
+            raise ValueError(f"action is not finite: {values}")
+        reply = self._request({"cmd": "step", "action": values})
         info = reply["info"]
         # "is_success" is the key SB3 (rollout/success_rate, EvalCallback) and other libraries read;
         # "success" is the server's own name, kept for code that reads it.

@@ -80,8 +80,10 @@ def _load_vecnormalize(vecnormalize):
         return pickle.load(f)
 
 
-def actor_to_dict(model, obs_layout: str, vecnormalize=None, training_settings: dict | None = None) -> dict:
-    """SB3 SAC model (+ optional VecNormalize or its .pkl path) -> actor JSON dictionary."""
+def actor_to_dict(model, obs_layout: str, vecnormalize=None, training_settings: dict | None = None,
+                  action_layout: str = "") -> dict:
+    """SB3 SAC model (+ optional VecNormalize or its .pkl path) -> actor JSON dictionary. `action_layout`:
+    the server's spec's; '' = by the action size (1: guidewire-nav/act/1, 2: guidewire-nav/act/2)."""
     policy = model.policy
     actor = policy.actor
     obs_space, act_space = model.observation_space, model.action_space
@@ -113,6 +115,7 @@ def actor_to_dict(model, obs_layout: str, vecnormalize=None, training_settings: 
         "obs_size": obs_size,
         "action_size": action_size,
         "obs_layout": obs_layout,
+        "action_layout": action_layout or ("guidewire-nav/act/1" if action_size == 1 else "guidewire-nav/act/2"),
         "obs_normalization": norm,
         "layers": layers,
         "output": {
@@ -126,9 +129,10 @@ def actor_to_dict(model, obs_layout: str, vecnormalize=None, training_settings: 
     }
 
 
-def export_sac_actor(model, path, obs_layout: str = "unspecified", vecnormalize=None, training_settings=None) -> dict:
+def export_sac_actor(model, path, obs_layout: str = "unspecified", vecnormalize=None, training_settings=None,
+                     action_layout: str = "") -> dict:
     """Write the deterministic actor of `model` to `path` (JSON); returns the dictionary written."""
-    d = actor_to_dict(model, obs_layout, vecnormalize, training_settings)
+    d = actor_to_dict(model, obs_layout, vecnormalize, training_settings, action_layout)
     Path(path).write_text(json.dumps(d, allow_nan=False))  # NaN weights: refuse, never write
     return d
 
@@ -179,7 +183,8 @@ def main(argv=None) -> None:
     p.add_argument("--obs-layout", default="guidewire-nav/obs/2",
                    help="observation layout the model was trained on: guidewire-nav/obs/2 (the server's default "
                         "omega plane), guidewire-nav/obs/1 (--omega-plane correct_branch, the paper's) or "
-                        "guidewire-nav/obs/3 (--omega-side)")
+                        "guidewire-nav/obs/3 (--omega-side) or guidewire-nav/obs/5 (--push-pull; the action "
+                        "layout follows the action size)")
     a = p.parse_args(argv)
     model = SAC.load(a.model, device="cpu")
     export_sac_actor(model, a.out, obs_layout=a.obs_layout, vecnormalize=a.vecnormalize)

@@ -50,6 +50,13 @@ class Settings:
                                   "carries the bend towards -1 (engine/task/observation.hpp says why)")
     junctions: str = arg("separate", "how a junction's wrong branches enter omega: separate (the paper's) or combined "
                                      "(k-way junctions and close forks; with --omega-side: obs/4, docs/junctions.md)")
+    push_pull: bool = arg(False, "the actor also sets the insertion speed (action [rotation, insertion], act/2; "
+                                 "observation obs/5; reward: engine/task/reward.hpp push_pull_reward; "
+                                 "docs/recovery.md)")
+    recovery: int = arg(0, "episodes go on after the strict end, at most this many retries (with --push-pull "
+                           "the actor pulls back itself; docs/recovery.md)")
+    reward_wrong_branch: float = arg(1.0, "--push-pull: reward lost per env step while the tip is in a wrong "
+                                          "child")
     reward_omega_centre: float = arg(0.1, "centre of the reward sigmoid 2/(1+exp(slope(omega-centre)))-1; paper "
                                           "Eq. 3: 0.1 (engine/task/reward.hpp says why to change)")
     reward_omega_slope: float = arg(5.0, "slope of the reward sigmoid; paper Eq. 3: 5")
@@ -141,7 +148,9 @@ def server_args(s: Settings) -> list[str]:
     return ["--omega-plane", s.omega_plane, "--reward-omega-centre", repr(s.reward_omega_centre),
             "--reward-omega-slope", repr(s.reward_omega_slope), "--push-speed", repr(s.push_speed),
             "--roll-disturbance", repr(s.roll_disturbance), "--random-start", repr(s.random_start),
-            "--junctions", s.junctions] + (["--omega-side"] if s.omega_side else [])
+            "--junctions", s.junctions] + (["--omega-side"] if s.omega_side else []) + (
+        ["--push-pull", "--recovery", str(s.recovery), "--reward-wrong-branch", repr(s.reward_wrong_branch)]
+        if s.push_pull else (["--recovery", str(s.recovery)] if s.recovery else []))
 
 
 def make_env_fn(s: Settings, rank: int, eval_env: bool = False, ray_server=None, seed_offset: int = 0):
@@ -489,6 +498,7 @@ def main(argv=None) -> int:
 
     best = SAC.load(out / "best_model.zip", device="cpu") if (out / "best_model.zip").exists() else model
     obs_layout = eval_env.unwrapped.spec_reply["obs_layout"]
+    action_layout = eval_env.unwrapped.spec_reply.get("action_layout", "guidewire-nav/act/1")
     summary = {
         "command": command, "commit": commit, "settings": dataclasses.asdict(s),
         "steps": int(model.num_timesteps), "wall_time_s": round(wall, 1),
@@ -498,7 +508,8 @@ def main(argv=None) -> int:
         "best_success_rate": max((e["success_rate"] for e in evals), default=None),
         "final_eval": evals[-1] if evals else None,
     }
-    export_sac_actor(best, out / "actor.json", obs_layout=obs_layout, training_settings=summary)
+    export_sac_actor(best, out / "actor.json", obs_layout=obs_layout, training_settings=summary,
+                     action_layout=action_layout)
     (out / "summary.json").write_text(json.dumps(summary, indent=2))
 
     # --- training curve

@@ -294,7 +294,7 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
         std::optional<NavigationTask> adapted;
         if (config.observation.omega_plane != default_task.config.observation.omega_plane ||
             config.observation.junctions != default_task.config.observation.junctions ||
-            config.recovery_attempts > 0)
+            config.action != default_task.config.action || config.recovery_attempts > 0)
           adapted = make_navigation_task(config, wire, anatomies);
         const NavigationTask& task = adapted ? *adapted : default_task;
         const std::string where = label + ", " + kind + ": ";

@@ -275,6 +275,41 @@ def test_combined_junctions_are_layout_obs4_and_change_nothing_on_a_two_way_fork
         combined.close()
 
 
+def test_push_pull_is_layouts_obs5_act2_and_holds_the_wire_when_stopped(server_bin):
+    # act/2 (docs/recovery.md): two action values, 14 observations; at insertion +1 the first 12 entries are
+    # obs/3's bit for bit; insertion 0 leaves the wire where it is; one value is refused by the client and the
+    # server alike, naming what the layout takes.
+    side = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1}, server_args=["--omega-side"])
+    pp = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1}, server_args=["--push-pull", "--recovery", "2"])
+    try:
+        assert pp.spec_reply["obs_layout"] == "guidewire-nav/obs/5"
+        assert pp.spec_reply["action_layout"] == "guidewire-nav/act/2"
+        assert side.spec_reply["action_layout"] == "guidewire-nav/act/1"
+        assert pp.action_space.shape == (2,) and pp.observation_space.shape == (14,)
+        assert pp.observation_names[-2:] == ["insertion", "wrong_branch"]
+        assert pp.spec_reply["task"]["recovery_attempts"] == 2
+        a, _ = side.reset(seed=6)
+        b, _ = pp.reset(seed=6)
+        for _ in range(30):
+            a, ra, *_ = side.step(np.array([0.5], dtype=np.float32))
+            b, rb, _, _, info = pp.step(np.array([0.5, 1.0], dtype=np.float32))
+            assert np.array_equal(a, b[:12]) and b[12] == 1.0 and b[13] == 0.0
+            assert ra == rb  # the push/pull reward at insertion 1 outside a wrong child is Eq. 3
+        inserted = info["inserted_mm"]
+        for _ in range(5):
+            b, r, *_, info = pp.step(np.array([0.0, 0.0], dtype=np.float32))
+            assert r == 0.0 and b[12] == 0.0
+        assert info["inserted_mm"] == pytest.approx(inserted)
+        assert info["strict_end"] is False and info["recovery_attempts"] == 0
+        with pytest.raises(ValueError, match="2 values"):
+            pp.step(np.array([0.5], dtype=np.float32))
+        with pytest.raises(ServerError, match="expected 2 numbers"):
+            pp._request({"cmd": "step", "action": [0.5]})
+    finally:
+        side.close()
+        pp.close()
+
+
 def test_heart_rate_makes_the_anatomy_beat_and_is_reported(server_bin):
     # The shipped coronary beats with its own field (docs/beating_heart.md): the same start as the static vessel
     # (the wall is at rest at t = 0), then the observation changes as the tree moves under the wire.

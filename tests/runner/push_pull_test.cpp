@@ -1,0 +1,196 @@
+// The push/pull task (issue 37 item 1b, docs/recovery.md): action layout act/2 (rotation, insertion) with
+// observation obs/5. At insertion +1 it is the paper's episode; stopping holds the wire and is no stall;
+// the wire is never pulled out past its start; with recovery the actor pulls out of a wrong child itself and
+// its (K+1)-th entry ends the procedure. An act/2 actor's JSON sets the task's layouts.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "apps/runner/controller.hpp"
+#include "apps/runner/navigation_anatomy.hpp"
+#include "engine/task/episode.hpp"
+#include "engine/task/navigation_task.hpp"
+#include "engine/task/observation.hpp"
+#include "engine/task/reward.hpp"
+#include "engine/wire/wire_params.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kT1 = std::string(GW_SOURCE_DIR) + "/anatomies/train/t1_straight_y/t1_straight_y";
+
+gw::NavigationTask t1_task(bool push_pull, int recovery_attempts) {
+  static const gw::NavigationAnatomy nav =
+      gw::load_navigation_anatomy(kT1 + ".stl", {1.0, std::nullopt, kT1 + ".truth.json", false});
+  gw::TaskConfig c;
+  c.observation.omega_side = true;
+  if (push_pull) {
+    c.action = gw::ActionLayout::kRotationInsertion;
+    c.observation.push_pull = true;
+  }
+  c.recovery_attempts = recovery_attempts;
+  return gw::make_navigation_task(c, gw::default_wire_params(), {nav.anatomy});
+}
+
+// The scripted rule's rotation turned towards the wrong branch (omega -> +1) or away from it.
+double aim(const gw::Observation& obs, bool at_wrong) {
+  return at_wrong ? (obs[gw::obs_index::kOmega] < 0.95 ? 1.0 : 0.0) : (obs[gw::obs_index::kOmega] > -0.95 ? 1.0 : 0.0);
+}
+
+}  // namespace
+
+TEST_CASE("push/pull: insertion +1 is the paper's episode bit for bit", "[runner][push_pull]") {
+  const gw::NavigationTask paper = t1_task(false, 0), push_pull = t1_task(true, 0);
+  for (const bool at_wrong : {false, true}) {
+    gw::EpisodeState a = gw::reset_episode(paper, 0, 1, 7), b = gw::reset_episode(push_pull, 0, 1, 7);
+    int steps = 0;
+    for (;;) {
+      const double rotation = aim(a.obs, at_wrong);
+      const gw::StepOutcome oa = gw::step_episode(paper, a, rotation);
+      const gw::StepOutcome ob = gw::step_episode(push_pull, b, gw::Action{rotation, 1.0});
+      ++steps;
+      REQUIRE(a.tip == b.tip);
+      for (int i = 0; i < gw::kSideObservationSize; ++i) REQUIRE(oa.obs[i] == ob.obs[i]);
+      REQUIRE(ob.obs[gw::obs_index::kInsertion] == 1.0);
+      REQUIRE(oa.terminated == ob.terminated);
+      REQUIRE(oa.truncated == ob.truncated);
+      if (!oa.info.wrong_branch) REQUIRE(oa.reward == ob.reward);  // reward.hpp: Eq. 3 at insertion 1
+      if (oa.terminated || oa.truncated) {
+        CHECK(oa.info.success == !at_wrong);
+        CHECK(ob.info.wrong_branch == at_wrong);
+        CHECK(ob.obs[gw::obs_index::kWrongBranch] == (at_wrong ? 1.0 : 0.0));
+        break;
+      }
+    }
+    CHECK(steps > 50);
+  }
+}
+
+TEST_CASE("push/pull: stopping holds the wire and is no stall, pulling stops at the start insertion",
+          "[runner][push_pull]") {
+  const gw::NavigationTask task = t1_task(true, 0);
+  gw::EpisodeState s = gw::reset_episode(task, 0, 1, 3);
+  for (int k = 0; k < 20; ++k) gw::step_episode(task, s, gw::Action{0.0, 1.0});
+  const double inserted = s.wire.inserted_length_mm;
+  // Three times the strict stall's 60 steps without pushing: no stall, the wire stays, stopping pays nothing.
+  for (int k = 0; k < 3 * task.config.stuck_steps; ++k) {
+    const gw::StepOutcome out = gw::step_episode(task, s, gw::Action{0.3, 0.0});
+    REQUIRE_FALSE(out.truncated);
+    REQUIRE_FALSE(out.terminated);
+    REQUIRE(out.reward == Approx(-0.2 * 0.3));  // only the rotation's effort
+    REQUIRE(out.obs[gw::obs_index::kInsertion] == 0.0);
+  }
+  CHECK(s.wire.inserted_length_mm == Approx(inserted).margin(1e-9));
+  // Pulling: back to the start insertion and no further (the command is then 0).
+  for (int k = 0; k < 100; ++k) gw::step_episode(task, s, gw::Action{0.0, -1.0});
+  CHECK(s.wire.inserted_length_mm >= task.config.initial_insertion_mm - 1e-9);
+  CHECK(s.wire.inserted_length_mm < task.config.initial_insertion_mm + 0.5);
+  CHECK(s.obs[gw::obs_index::kInsertion] == 0.0);
+  CHECK_FALSE(s.done);
+  CHECK_THROWS_WITH(gw::step_episode(task, s, gw::Action{0.0, std::nan("")}), Catch::Contains("insertion"));
+}
+
+TEST_CASE("push/pull: a stall is wire pushed in without progress", "[runner][push_pull]") {
+  const gw::NavigationTask task = t1_task(true, 0);
+  gw::EpisodeState s = gw::reset_episode(task, 0, 1, 3);
+  // Aim at the wrong child's wall and push at a third of the speed: the stall comes after 24 mm of pushing
+  // without progress, three times the strict rule's 60 steps.
+  const double stall_mm = task.config.stuck_steps * task.config.frame_skip * task.config.dt_s * task.config.push_mm_per_s;
+  CHECK(stall_mm == Approx(24.0));
+  gw::StepOutcome out;
+  int steps = 0;
+  do {
+    out = gw::step_episode(task, s, gw::Action{aim(s.obs, true), 1.0 / 3.0});
+    ++steps;
+  } while (!out.terminated && !out.truncated && steps < 5000);
+  REQUIRE((out.terminated || out.truncated));
+  if (out.info.stuck) CHECK(s.wire.inserted_length_mm - s.inserted_at_best_mm >= stall_mm);
+  CHECK(steps > 2 * task.config.stuck_steps);
+}
+
+TEST_CASE("push/pull with recovery: the actor pulls out of a wrong child itself, the (K+1)-th entry ends it",
+          "[runner][push_pull]") {
+  const gw::NavigationTask task = t1_task(true, 1);
+  gw::EpisodeState s = gw::reset_episode(task, 0, 1, 5);
+  gw::StepOutcome out;
+  // 1. Into the wrong child: the strict episode ends there, the procedure goes on.
+  do out = gw::step_episode(task, s, gw::Action{aim(s.obs, true), 1.0});
+  while (!out.info.strict_end && !s.done);
+  REQUIRE(out.info.strict_end);
+  REQUIRE(out.info.wrong_branch);
+  CHECK_FALSE(out.terminated);
+  CHECK_FALSE(out.truncated);
+  CHECK(out.info.recovery_attempts == 1);
+  CHECK(out.obs[gw::obs_index::kWrongBranch] == 1.0);
+  CHECK(out.info.in_control);
+  // In the wrong child the step costs reward_wrong_branch more than the push/pull reward without it.
+  const double without = gw::push_pull_reward(out.obs[gw::obs_index::kOmega], out.obs[gw::obs_index::kLambda],
+                                              out.obs[gw::obs_index::kAction], 1.0, false, 0.0, task.config.reward);
+  CHECK(out.reward == Approx(without - task.config.reward_wrong_branch));
+  // 2. Pull back until the tip is out of it (bounded).
+  int pulled = 0;
+  while (s.obs[gw::obs_index::kWrongBranch] == 1.0 && pulled < 200) {
+    out = gw::step_episode(task, s, gw::Action{0.0, -1.0});
+    REQUIRE_FALSE(s.done);
+    ++pulled;
+  }
+  REQUIRE(s.obs[gw::obs_index::kWrongBranch] == 0.0);
+  CHECK(pulled >= 1);  // the test says "in" from wrong_branch_depth_mm into the child: a pull of 0.4 mm can end it
+  for (int k = 0; k < 10; ++k) out = gw::step_episode(task, s, gw::Action{0.0, -1.0});
+  // 3. In again: the second entry is past K = 1 retries and ends the procedure as a failure.
+  do out = gw::step_episode(task, s, gw::Action{aim(s.obs, true), 1.0});
+  while (!s.done);
+  CHECK(out.terminated);
+  CHECK(out.info.wrong_branch);
+  CHECK(out.info.recovery_attempts == 1);
+  CHECK_FALSE(out.info.strict_end);
+}
+
+TEST_CASE("push/pull: an act/2 actor sets the task's layouts and its insertion reaches the task", "[runner][push_pull]") {
+  const fs::path dir = fs::path(GW_BINARY_DIR) / "test_runner_scratch" / "push_pull";
+  fs::create_directories(dir);
+  // A linear actor: rotation = tanh(0), insertion = tanh(0.5 + wrong_branch entry * -2).
+  auto write = [&](const std::string& obs_layout, int obs, const std::string& action_layout, int actions) {
+    std::string w;
+    for (int r = 0; r < actions; ++r)
+      for (int i = 0; i < obs; ++i) w += std::string(w.empty() ? "" : ", ") + (r == 1 && i == obs - 1 ? "-2" : "0");
+    const std::string bias = actions == 2 ? "0, 0.5" : "0";
+    const std::string bounds = actions == 2 ? "[-1, -1]" : "[-1]", high = actions == 2 ? "[1, 1]" : "[1]";
+    const fs::path p = dir / ("actor_" + std::to_string(obs) + "_" + std::to_string(actions) + ".json");
+    std::ofstream(p) << R"({"format": "guidewire-nav/actor/1", "obs_size": )" << obs << R"(, "action_size": )" << actions
+                     << R"(, "obs_layout": ")" << obs_layout << R"(", "action_layout": ")" << action_layout
+                     << R"(", "obs_normalization": null, "layers": [{"shape": [)" << actions << ", " << obs
+                     << R"(], "weight": [)" << w << R"(], "bias": [)" << bias
+                     << R"(], "activation": "identity"}], "output": {"squash": "tanh", "low": )" << bounds
+                     << R"(, "high": )" << high << "}}";
+    return p.string();
+  };
+  gw::TaskConfig config;
+  const auto actor = gw::make_controller("policy", write("guidewire-nav/obs/5", 14, "guidewire-nav/act/2", 2));
+  actor->adapt(config);
+  CHECK(config.action == gw::ActionLayout::kRotationInsertion);
+  CHECK(config.observation.push_pull);
+  CHECK(std::string(config.observation.name()) == "guidewire-nav/obs/5");
+  gw::Observation obs{};
+  CHECK(actor->act(obs).insertion == Approx(std::tanh(0.5)).epsilon(1e-6));
+  obs[gw::obs_index::kWrongBranch] = 1.0;
+  CHECK(actor->act(obs).insertion == Approx(std::tanh(-1.5)).epsilon(1e-6));
+  // Back to a rotation-only actor: its layouts again.
+  gw::make_controller("scripted-omega", "")->adapt(config);  // baselines leave the config alone
+  CHECK(config.action == gw::ActionLayout::kRotationInsertion);
+  // Layouts that do not go together, or sizes that are not the layout's, are refused by name.
+  CHECK_THROWS_WITH(gw::make_controller("policy", write("guidewire-nav/obs/5", 14, "guidewire-nav/act/1", 1)),
+                    Catch::Contains("obs/5 goes with act/2"));
+  CHECK_THROWS_WITH(gw::make_controller("policy", write("guidewire-nav/obs/3", 12, "guidewire-nav/act/2", 2)),
+                    Catch::Contains("obs/5 goes with act/2"));
+  CHECK_THROWS_WITH(gw::make_controller("policy", write("guidewire-nav/obs/5", 14, "guidewire-nav/act/2", 1)),
+                    Catch::Contains("outputs 1") && Catch::Contains("has 2"));
+  CHECK_THROWS_WITH(gw::make_controller("policy", write("guidewire-nav/obs/5", 14, "guidewire-nav/act/9", 2)),
+                    Catch::Contains("unknown action") && Catch::Contains("guidewire-nav/act/2"));
+  // A task with act/2 and a rotation-only observation (or the reverse) is refused.
+  gw::TaskConfig bad;
+  bad.action = gw::ActionLayout::kRotationInsertion;
+  CHECK_THROWS_WITH(gw::check_task_config(bad), Catch::Contains("obs/5"));
+}

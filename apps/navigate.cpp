@@ -68,8 +68,9 @@ int main(int argc, char** argv) {
                  "constant insertion speed at the proximal end, mm/s (the shipped policy was trained at 10)");
   int recovery = 0;
   app.add_option("--recovery", recovery,
-                 "pull back and retry after a wrong branch or a stall, at most K times (docs/recovery.md); the "
-                 "outcome stays the strict episode's, the procedure's is under \"recovery\"")
+                 "pull back and retry after a wrong branch or a stall, at most K times (docs/recovery.md; a push/pull "
+                 "actor, act/2, pulls back itself); the outcome stays the strict episode's, the procedure's is under "
+                 "\"recovery\"")
       ->check(CLI::NonNegativeNumber);
   std::string junctions = "separate";
   app.add_option("--junctions", junctions, "how a junction's wrong branches enter omega: separate (the paper's task, every table row) or combined (k-way junctions and closely spaced forks aimed at together, layout obs/4; docs/junctions.md)");
@@ -165,6 +166,7 @@ int main(int argc, char** argv) {
     summary["push_mm_per_s"] = push_mm_per_s;
     summary["task_scale"] = task.courses.at(0).at(0).vessel_scale ? "vessel" : "fixed";  // --task-scale, resolved
     if (recovery > 0) summary["recovery_attempts"] = recovery;
+    if (config.action != gw::ActionLayout::kRotation) summary["action_layout"] = gw::action_layout_name(config.action);
     if (!motion_source.empty())
       summary["heart"] = {{"heart_rate_bpm", anatomy.scene->motion ? anatomy.scene->motion->heart_rate_bpm : 0.0},
                           {"motion", motion_source}};

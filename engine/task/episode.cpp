@@ -284,8 +284,9 @@ void end_retraction(const NavigationTask& task, EpisodeState& s) {
 
 // act/2 (push/pull): the end of step_episode once the tip's wrong-branch test (`lost`) is known. The strict
 // end is the paper's (first wrong branch, a stall, the step limit); with recovery_attempts K > 0 the procedure
-// goes on under the actor: a stall no longer ends it, an entry into a wrong child uses one of K retries and
-// the one after the K-th ends it, recovery_time_s past the step limit bounds it (task_config.hpp).
+// goes on under the actor: an entry into a wrong child uses one of K retries and the one after the K-th ends
+// it, as does a stall (wire pushed in without progress); recovery_time_s past the step limit bounds it
+// (task_config.hpp).
 StepOutcome end_push_pull_step(const NavigationTask& task, EpisodeState& s, int lost, double rotation, double insertion,
                                StepOutcome& out) {
   const TaskConfig& c = task.config;

@@ -63,6 +63,7 @@ def test_parity_random_weights(tmp_path, net_arch, activation):
     out = tmp_path / "actor.json"
     d = export_sac_actor(model, out, obs_layout="test/1", training_settings={"net_arch": net_arch})
     assert len(d["layers"]) == n_hidden + 1
+    assert d["action_layout"] == "guidewire-nav/act/2"  # two actions, as the push/pull actor's (by the size)
     rng = np.random.default_rng(1)
     obs = rng.normal(0, 2, (1000, 20)).astype(np.float32)
     expected, _ = model.predict(obs, deterministic=True)

@@ -296,7 +296,12 @@ StepOutcome end_push_pull_step(const NavigationTask& task, EpisodeState& s, int 
   s.in_control = s.in_control || s.in_wrong_branch;  // an actor in a wrong child must be able to pull out
   out.info.in_control = s.in_control;
   out.obs = s.obs;
-  out.reward = push_pull_reward(s.obs[obs_index::kOmega], s.obs[obs_index::kLambda], rotation, insertion,
+  // New depth: how far this step's command took the wire past its deepest so far, in full-speed steps (the
+  // commands, not the measured insertion, so that the constant push gives exactly 1).
+  s.pushed_steps += insertion;
+  const double new_depth = std::clamp(s.pushed_steps - s.deepest_pushed_steps, 0.0, 1.0);
+  s.deepest_pushed_steps = std::max(s.deepest_pushed_steps, s.pushed_steps);
+  out.reward = push_pull_reward(s.obs[obs_index::kOmega], s.obs[obs_index::kLambda], rotation, new_depth,
                                 s.in_wrong_branch, c.reward_wrong_branch, c.reward);
   if (c.reward_force_per_N > 0) out.reward -= c.reward_force_per_N * 1e-3 * out.info.wall_force_peak_total_mN;
 

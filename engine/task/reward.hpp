@@ -17,12 +17,13 @@ struct RewardShape {
 double navigation_reward(double omega, double lambda_ratio, double action, const RewardShape& shape = {});
 
 // The push/pull actor's reward (action layout act/2): the paper's orientation and progress terms earned in
-// proportion to the forward insertion max(0, insertion) in [0, 1], the rotation effort as in Eq. 3, less
-// `wrong_branch_cost` while the tip is in a wrong child. Why: with the speed in the actor's hands, Eq. 3's
-// positive terms pay for every step, so holding still while aimed would pay forever; weighted by the
-// insertion, stopping pays nothing and pushing pays what the paper's constant push paid. At insertion 1 and
-// outside a wrong child it is Eq. 3.
-double push_pull_reward(double omega, double lambda_ratio, double rotation, double insertion, bool in_wrong_branch,
+// proportion to `new_depth` in [0, 1], the part of a full-speed step by which the wire went deeper than ever
+// before in the episode; the rotation effort as in Eq. 3; less `wrong_branch_cost` while the tip is in a wrong
+// child. Why: with the speed in the actor's hands, Eq. 3's positive terms pay for every step, so holding still
+// while aimed would pay forever; weighted by the forward insertion, pushing and pulling back in turn would
+// (a first run learnt exactly that: docs/policy_history.md). Weighted by new depth, stopping and going back
+// and forth earn nothing, and the constant push earns Eq. 3: at new depth 1 outside a wrong child it is Eq. 3.
+double push_pull_reward(double omega, double lambda_ratio, double rotation, double new_depth, bool in_wrong_branch,
                         double wrong_branch_cost, const RewardShape& shape = {});
 
 }  // namespace gw

@@ -83,6 +83,12 @@ TEST_CASE("push/pull: stopping holds the wire and is no stall, pulling stops at 
     REQUIRE(out.obs[gw::obs_index::kInsertion] == 0.0);
   }
   CHECK(s.wire.inserted_length_mm == Approx(inserted).margin(1e-9));
+  // Back and forth earns nothing: 5 steps back, 5 steps in again reach no new depth; the step after does.
+  for (int k = 0; k < 5; ++k) REQUIRE(gw::step_episode(task, s, gw::Action{0.0, -1.0}).reward == 0.0);
+  for (int k = 0; k < 5; ++k) REQUIRE(gw::step_episode(task, s, gw::Action{0.0, 1.0}).reward == 0.0);
+  const gw::StepOutcome deeper = gw::step_episode(task, s, gw::Action{0.0, 1.0});
+  CHECK(deeper.reward == gw::navigation_reward(deeper.obs[gw::obs_index::kOmega], deeper.obs[gw::obs_index::kLambda], 0.0,
+                                               task.config.reward));
   // Pulling: back to the start insertion and no further (the command is then 0).
   for (int k = 0; k < 100; ++k) gw::step_episode(task, s, gw::Action{0.0, -1.0});
   CHECK(s.wire.inserted_length_mm >= task.config.initial_insertion_mm - 1e-9);

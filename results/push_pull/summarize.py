@@ -1,0 +1,93 @@
+"""Tables of results/push_pull/README.md from the evaluate runs beside this file (standard library only).
+
+push_pull/results.json: the push/pull actor (act/2) with --recovery 3 on the coronary-like and deformed coronary rows;
+scripted/results.json: the scripted rule with the recovery wrapper (--recovery 3) on the same episodes, re-run at
+this commit; ../recovery/: the shipped rotation-only SAC with the wrapper (same episodes, seeds 0-24).
+Sign tests: exact two-sided binomial on the episodes where exactly one of the two succeeded, as the table's.
+"""
+import json
+import math
+import os
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROWS = ["coronary-like", "deformed coronary"]
+
+
+def load(*parts):
+    path = os.path.join(HERE, *parts)
+    return {r["name"]: r for r in json.load(open(path))["rows"]} if os.path.exists(path) else {}
+
+
+def wilson(k, n, z=1.96):
+    if n == 0:
+        return (0.0, 1.0)
+    p = k / n
+    d = 1 + z * z / n
+    c = (p + z * z / (2 * n)) / d
+    h = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / d
+    return (max(0.0, c - h), min(1.0, c + h))
+
+
+def sign_test(won, lost):
+    n = won + lost
+    if n == 0:
+        return 1.0
+    k = min(won, lost)
+    return min(1.0, 2 * sum(math.comb(n, i) for i in range(k + 1)) / 2 ** n)
+
+
+def rate(k, n):
+    lo, hi = wilson(k, n)
+    return f"{k}/{n} ({100 * k / n:.0f}%, {100 * lo:.0f}-{100 * hi:.0f}%)"
+
+
+def outcomes(column, recovery):
+    """(anatomy, target, seed) -> success, strict or with recovery."""
+    return {(e["anatomy"], e["target"], e["seed"]): (e["recovery"]["outcome"] if recovery else e["outcome"]) == "success"
+            for e in column["results"]}
+
+
+def mean(values):
+    return sum(values) / len(values) if values else float("nan")
+
+
+runs = {"push/pull SAC (act/2)": (load("results.json"), "sac-policy"),
+        "scripted omega + wrapper": (load("scripted", "results.json"), "scripted-omega"),
+        "shipped SAC (act/1) + wrapper": (load("..", "recovery", "results.json") | load("..", "recovery", "deformed",
+                                                                                        "results.json"), "sac-policy")}
+print("| row | controller | strict | with recovery (K = 3) | retries used (mean) | procedure time, s (mean) | "
+      "peak node force, N (mean) | episodes with peak node > 1.5 N |")
+print("|---|---|---|---|---|---|---|---|")
+for row in ROWS:
+    for label, (table, col) in runs.items():
+        if row not in table or col not in table[row]["results"]:
+            continue
+        c = table[row]["results"][col]
+        eps = c["results"]
+        strict = sum(e["outcome"] == "success" for e in eps)
+        rec = sum(e["recovery"]["outcome"] == "success" for e in eps)
+        n = len(eps)
+        attempts = mean([e["recovery"]["attempts"] for e in eps])
+        proc = mean([e["recovery"]["procedure_time_s"] for e in eps])
+        peak = [e["recovery"]["force"]["peak_node_N"] for e in eps]
+        print(f"| {row} | {label} | {rate(strict, n)} | {rate(rec, n)} | {attempts:.2f} | {proc:.1f} | "
+              f"{mean(peak):.2f} | {sum(p > 1.5 for p in peak)}/{n} |")
+
+print()
+print("| row | comparison (same episodes) | won | lost | p (sign test) |")
+print("|---|---|---|---|---|")
+pairs = [("push/pull SAC (act/2)", True, "scripted omega + wrapper", True),
+         ("push/pull SAC (act/2)", True, "shipped SAC (act/1) + wrapper", True),
+         ("push/pull SAC (act/2)", False, "shipped SAC (act/1) + wrapper", False)]
+for row in ROWS:
+    for a, ra, b, rb in pairs:
+        ta, ca = runs[a]
+        tb, cb = runs[b]
+        if row not in ta or row not in tb or ca not in ta[row]["results"] or cb not in tb[row]["results"]:
+            continue
+        x, y = outcomes(ta[row]["results"][ca], ra), outcomes(tb[row]["results"][cb], rb)
+        keys = sorted(set(x) & set(y))
+        won = sum(x[k] and not y[k] for k in keys)
+        lost = sum(y[k] and not x[k] for k in keys)
+        what = f"{a} {'with recovery' if ra else 'strict'} vs {b} {'with recovery' if rb else 'strict'} ({len(keys)})"
+        print(f"| {row} | {what} | {won} | {lost} | {sign_test(won, lost):.3f} |")

@@ -9,6 +9,7 @@
 
 #include "apps/runner/controller.hpp"
 #include "apps/runner/navigation_anatomy.hpp"
+#include "apps/runner/run_episode.hpp"
 #include "engine/task/episode.hpp"
 #include "engine/task/navigation_task.hpp"
 #include "engine/task/observation.hpp"
@@ -199,4 +200,28 @@ TEST_CASE("push/pull: an act/2 actor sets the task's layouts and its insertion r
   gw::TaskConfig bad;
   bad.action = gw::ActionLayout::kRotationInsertion;
   CHECK_THROWS_WITH(gw::check_task_config(bad), Catch::Contains("obs/5"));
+}
+
+TEST_CASE("push/pull: the shipped push/pull actor runs an episode end to end, the same twice", "[runner][push_pull]") {
+  const std::string path = std::string(GW_SOURCE_DIR) + "/policy/trained/sac_actor_push_pull.json";
+  gw::TaskConfig config;
+  auto actor = gw::make_controller("policy", path);
+  actor->adapt(config);
+  REQUIRE(config.action == gw::ActionLayout::kRotationInsertion);
+  config.recovery_attempts = 3;
+  static const gw::NavigationAnatomy nav =
+      gw::load_navigation_anatomy(kT1 + ".stl", {1.0, std::nullopt, kT1 + ".truth.json", false});
+  const gw::NavigationTask task = gw::make_navigation_task(config, gw::default_wire_params(), {nav.anatomy});
+  const gw::EpisodeTrace a = gw::run_episode(task, 0, 2, 11, *actor);
+  const gw::EpisodeTrace b = gw::run_episode(task, 0, 2, 11, *gw::make_controller("policy", path));
+  REQUIRE(a.insertion.size() == a.action.size());
+  CHECK(a.observation_names.size() == 14);
+  CHECK(a.recovery_attempts_allowed == 3);
+  CHECK(!a.recovery_outcome.empty());
+  CHECK(a.tip == b.tip);
+  CHECK(a.insertion == b.insertion);
+  // The actor sets the speed: somewhere it is not the constant push.
+  bool varied = false;
+  for (std::size_t f = 1; f < a.insertion.size(); ++f) varied = varied || (a.agent_in_control[f] && a.insertion[f] != 1.0);
+  CHECK(varied);
 }

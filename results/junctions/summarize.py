@@ -4,11 +4,14 @@ separate/, separate_close/: `evaluate --rows ...` with the paper's junction read
 combined/, combined_close/: the same rows and seeds with `--junctions combined` (the controllers that read omega).
 """
 import json
-import math
 import os
+import sys
 from collections import Counter, defaultdict
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.dirname(HERE))
+from stats import sign_test, wilson  # noqa: E402  (results/stats.py)
+
 COLUMNS = ["sac-policy", "scripted-omega", "scripted-omega-ccw", "push-only"]
 
 
@@ -20,25 +23,6 @@ def rows(*folders):
             for r in json.load(open(path))["rows"]:
                 out[r["name"]] = r
     return out
-
-
-def wilson(k, n, z=1.96):
-    if n == 0:
-        return (0.0, 1.0)
-    p = k / n
-    d = 1 + z * z / n
-    c = (p + z * z / (2 * n)) / d
-    h = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / d
-    return (max(0.0, c - h), min(1.0, c + h))
-
-
-def sign_test(won, lost):
-    n = won + lost
-    if n == 0:
-        return 1.0
-    k = min(won, lost)
-    p = sum(math.comb(n, i) for i in range(k + 1)) / 2 ** n
-    return min(1.0, 2 * p)
 
 
 def cell(summary):

@@ -1,39 +1,24 @@
 """Tables of results/push_pull/README.md from the evaluate runs beside this file (standard library only).
 
-push_pull/results.json: the push/pull actor (act/2) with --recovery 3 on the coronary-like and deformed coronary rows;
+results.json: the push/pull actor (act/2) with --recovery 3 on the coronary-like and deformed coronary rows;
 scripted/results.json: the scripted rule with the recovery wrapper (--recovery 3) on the same episodes, re-run at
 this commit; ../recovery/: the shipped rotation-only SAC with the wrapper (same episodes, seeds 0-24).
 Sign tests: exact two-sided binomial on the episodes where exactly one of the two succeeded, as the table's.
 """
 import json
-import math
 import os
+import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.dirname(HERE))
+from stats import sign_test, wilson  # noqa: E402  (results/stats.py)
+
 ROWS = ["coronary-like", "deformed coronary"]
 
 
 def load(*parts):
     path = os.path.join(HERE, *parts)
     return {r["name"]: r for r in json.load(open(path))["rows"]} if os.path.exists(path) else {}
-
-
-def wilson(k, n, z=1.96):
-    if n == 0:
-        return (0.0, 1.0)
-    p = k / n
-    d = 1 + z * z / n
-    c = (p + z * z / (2 * n)) / d
-    h = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / d
-    return (max(0.0, c - h), min(1.0, c + h))
-
-
-def sign_test(won, lost):
-    n = won + lost
-    if n == 0:
-        return 1.0
-    k = min(won, lost)
-    return min(1.0, 2 * sum(math.comb(n, i) for i in range(k + 1)) / 2 ** n)
 
 
 def rate(k, n):

@@ -1,0 +1,23 @@
+"""Statistics the results scripts share (standard library only): the Wilson interval (z 1.96; the C++ table's
+apps/runner/success_statistics.hpp uses the exact 1.95996) and the exact sign test the table uses."""
+import math
+
+
+def wilson(k, n, z=1.96):
+    """95% Wilson score interval for k successes in n trials ((0, 1) for none)."""
+    if n == 0:
+        return (0.0, 1.0)
+    p = k / n
+    d = 1 + z * z / n
+    c = (p + z * z / (2 * n)) / d
+    h = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / d
+    return (max(0.0, c - h), min(1.0, c + h))
+
+
+def sign_test(won, lost):
+    """Exact two-sided sign test on the episodes only one of two controllers won."""
+    n = won + lost
+    if n == 0:
+        return 1.0
+    k = min(won, lost)
+    return min(1.0, 2 * sum(math.comb(n, i) for i in range(k + 1)) / 2 ** n)

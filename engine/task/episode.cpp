@@ -287,13 +287,13 @@ void end_retraction(const NavigationTask& task, EpisodeState& s) {
 // goes on under the actor: an entry into a wrong child uses one of K retries and the one after the K-th ends
 // it, as does a stall (wire pushed in without progress); recovery_time_s past the step limit bounds it
 // (task_config.hpp).
-StepOutcome end_push_pull_step(const NavigationTask& task, EpisodeState& s, int lost, double rotation, double insertion,
-                               StepOutcome& out) {
+void end_push_pull_step(const NavigationTask& task, EpisodeState& s, int lost, double rotation, double insertion,
+                        StepOutcome& out) {
   const TaskConfig& c = task.config;
-  const bool entered = lost >= 0 && !s.in_wrong_branch;
-  s.in_wrong_branch = lost >= 0;
-  s.obs[obs_index::kWrongBranch] = s.in_wrong_branch ? 1.0 : 0.0;
-  s.in_control = s.in_control || s.in_wrong_branch;  // an actor in a wrong child must be able to pull out
+  const bool in_wrong_branch = lost >= 0;
+  const bool entered = in_wrong_branch && s.obs[obs_index::kWrongBranch] == 0.0;  // the entry holds the last step's
+  s.obs[obs_index::kWrongBranch] = in_wrong_branch ? 1.0 : 0.0;
+  s.in_control = s.in_control || in_wrong_branch;  // an actor in a wrong child must be able to pull out
   out.info.in_control = s.in_control;
   out.obs = s.obs;
   // New depth: how far this step's command took the wire past its deepest so far, in full-speed steps (the
@@ -302,7 +302,7 @@ StepOutcome end_push_pull_step(const NavigationTask& task, EpisodeState& s, int 
   const double new_depth = std::clamp(s.pushed_steps - s.deepest_pushed_steps, 0.0, 1.0);
   s.deepest_pushed_steps = std::max(s.deepest_pushed_steps, s.pushed_steps);
   out.reward = push_pull_reward(s.obs[obs_index::kOmega], s.obs[obs_index::kLambda], rotation, new_depth,
-                                s.in_wrong_branch, c.reward_wrong_branch, c.reward);
+                                in_wrong_branch, c.reward_wrong_branch, c.reward);
   if (c.reward_force_per_N > 0) out.reward -= c.reward_force_per_N * 1e-3 * out.info.wall_force_peak_total_mN;
 
   // A stall is wire pushed in without progress: stuck_steps pushes at the full speed (the strict rule's 24 mm
@@ -328,23 +328,18 @@ StepOutcome end_push_pull_step(const NavigationTask& task, EpisodeState& s, int 
       else
         failed = true;
     }
-    // A tip still in the child it entered earlier goes on; so does the step that ended the strict episode
-    // (its flags say why, for the strict columns) unless it ends the procedure too. A stall ends it.
-    const bool strict_flags[3] = {lost >= 0, stalled, s.steps >= s.max_steps};
-    out.info.wrong_branch = entered && failed;
-    out.info.stuck = stalled;
-    out.info.step_limit = !time_left;
-    out.terminated = out.info.wrong_branch;
+    // A tip still in the child it entered earlier goes on, and so does the step that ended the strict episode
+    // unless it ends the procedure too; on such a step the flags say why the strict episode ended (for the
+    // strict columns). A stall ends the procedure.
+    out.terminated = entered && failed;
     out.truncated = !out.terminated && (failed || stalled);
-    if (out.info.strict_end && !out.terminated && !out.truncated) {  // the strict end's own verdict
-      out.info.wrong_branch = strict_flags[0];
-      out.info.stuck = strict_flags[1];
-      out.info.step_limit = strict_flags[2];
-    }
+    const bool strict_verdict = out.info.strict_end && !out.terminated && !out.truncated;
+    out.info.wrong_branch = strict_verdict ? in_wrong_branch : out.terminated;
+    out.info.stuck = stalled;
+    out.info.step_limit = strict_verdict ? s.steps >= s.max_steps : !time_left;
   }
   out.info.recovery_attempts = s.recovery_attempts_used;
   s.done = out.terminated || out.truncated;
-  return out;
 }
 
 }  // namespace
@@ -466,7 +461,10 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, const Acti
   const Anatomy& geometry = s.shape.valid ? s.shape.anatomy : anatomy;  // the moving wall's, at this time
   const int lost = out.info.success ? -1 : wrong_branch_entered(c, geometry, current_course(s), s.tip, s.course_distance_mm);
   out.info.wrong_branch = lost >= 0;
-  if (push_pull) return end_push_pull_step(task, s, lost, applied, insertion, out);
+  if (push_pull) {
+    end_push_pull_step(task, s, lost, applied, insertion, out);
+    return out;
+  }
   out.terminated = out.info.success || out.info.wrong_branch;
   if (!out.terminated) {
     out.info.step_limit = s.steps >= (s.strict_over ? s.procedure_max_steps : s.max_steps);

@@ -51,7 +51,6 @@ struct EpisodeState {
   int retract_steps_left = 0;      // bound on one pull-back (a wire caught on the wall stops pulling)
   int turn_steps_left = 0;         // env steps of the recovery turn still to apply
   int procedure_max_steps = 0;     // step limit with recovery: max_steps + recovery_time_s; else max_steps
-  bool in_wrong_branch = false;    // act/2: the tip was in a wrong child at the last step (obs entry wrong_branch)
   double inserted_at_best_mm = 0.0;  // the wire's insertion when best_progress_mm was last raised (act/2 stall)
   double pushed_steps = 0.0;       // act/2: the insertion commands summed (full-speed env steps pushed, net)
   double deepest_pushed_steps = 0.0;  // their largest value so far: the reward pays only for going deeper

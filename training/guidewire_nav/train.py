@@ -149,8 +149,8 @@ def server_args(s: Settings) -> list[str]:
             "--reward-omega-slope", repr(s.reward_omega_slope), "--push-speed", repr(s.push_speed),
             "--roll-disturbance", repr(s.roll_disturbance), "--random-start", repr(s.random_start),
             "--junctions", s.junctions] + (["--omega-side"] if s.omega_side else []) + (
-        ["--push-pull", "--recovery", str(s.recovery), "--reward-wrong-branch", repr(s.reward_wrong_branch)]
-        if s.push_pull else (["--recovery", str(s.recovery)] if s.recovery else []))
+        ["--recovery", str(s.recovery)] if s.recovery else []) + (
+        ["--push-pull", "--reward-wrong-branch", repr(s.reward_wrong_branch)] if s.push_pull else [])
 
 
 def make_env_fn(s: Settings, rank: int, eval_env: bool = False, ray_server=None, seed_offset: int = 0):

@@ -282,11 +282,11 @@ void end_retraction(const NavigationTask& task, EpisodeState& s) {
   s.best_progress_step = s.steps;
 }
 
-// act/2 (push/pull): the end of step_episode once the tip's wrong-branch test (`lost`) is known. The strict
-// end is the paper's (first wrong branch, a stall, the step limit); with recovery_attempts K > 0 the procedure
-// goes on under the actor: an entry into a wrong child uses one of K retries and the one after the K-th ends
-// it, as does a stall (wire pushed in without progress); recovery_time_s past the step limit bounds it
-// (task_config.hpp).
+// act/2 (push/pull): the end of step_episode once the tip's wrong-branch test (`lost`) is known; the caller
+// takes the force cost off the reward. The strict end is the paper's (first wrong branch, a stall, the step
+// limit); with recovery_attempts K > 0 the procedure goes on under the actor: an entry into a wrong child uses
+// one of K retries and the one after the K-th ends it, as does a stall (wire pushed in without progress);
+// recovery_time_s past the step limit bounds it (task_config.hpp).
 void end_push_pull_step(const NavigationTask& task, EpisodeState& s, int lost, double rotation, double insertion,
                         StepOutcome& out) {
   const TaskConfig& c = task.config;
@@ -303,7 +303,6 @@ void end_push_pull_step(const NavigationTask& task, EpisodeState& s, int lost, d
   s.deepest_pushed_steps = std::max(s.deepest_pushed_steps, s.pushed_steps);
   out.reward = push_pull_reward(s.obs[obs_index::kOmega], s.obs[obs_index::kLambda], rotation, new_depth,
                                 in_wrong_branch, c.reward_wrong_branch, c.reward);
-  if (c.reward_force_per_N > 0) out.reward -= c.reward_force_per_N * 1e-3 * out.info.wall_force_peak_total_mN;
 
   // A stall is wire pushed in without progress: stuck_steps pushes at the full speed (the strict rule's 24 mm
   // under the constant push) since the tip last gained stuck_progress_mm. An actor that stops to aim does not
@@ -428,8 +427,9 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, const Acti
   s.obs[obs_index::kAction] = applied;
   s.obs[obs_index::kInsertion] = control.push_mm_per_s / c.push_mm_per_s;
   out.obs = s.obs;
-  out.reward = navigation_reward(s.obs[obs_index::kOmega], s.obs[obs_index::kLambda], applied, c.reward);
-  if (c.reward_force_per_N > 0) out.reward -= c.reward_force_per_N * 1e-3 * peak.total_mN;
+  const double force_cost = c.reward_force_per_N * 1e-3 * peak.total_mN;  // 0: the paper's reward
+  if (!push_pull)
+    out.reward = navigation_reward(s.obs[obs_index::kOmega], s.obs[obs_index::kLambda], applied, c.reward) - force_cost;
 
   if (retracting) {
     // Recovery only: no end test but the procedure's step limit while the wire comes back.
@@ -463,6 +463,7 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, const Acti
   out.info.wrong_branch = lost >= 0;
   if (push_pull) {
     end_push_pull_step(task, s, lost, applied, insertion, out);
+    out.reward -= force_cost;
     return out;
   }
   out.terminated = out.info.success || out.info.wrong_branch;

@@ -57,6 +57,9 @@ int main(int argc, char** argv) {
   app.add_option("--reward-wrong-branch", config.reward_wrong_branch,
                  "--push-pull: reward lost per env step while the tip is in a wrong child")
       ->capture_default_str();
+  app.add_option("--reward-time", config.reward_time_per_step,
+                 "--push-pull: reward lost every env step, a cost of time (0: stopping is free; engine/task/reward.hpp)")
+      ->capture_default_str();
   app.add_option("--task-scale", task_scale,
                  "wrong-branch and control-zone lengths: fixed (the paper's millimetres), vessel (from the walls), "
                  "auto (vessel for an inlet wider than 4 mm in radius; docs/vessel_scale.md)")

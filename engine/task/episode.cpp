@@ -302,7 +302,7 @@ void end_push_pull_step(const NavigationTask& task, EpisodeState& s, int lost, d
   const double new_depth = std::clamp(s.pushed_steps - s.deepest_pushed_steps, 0.0, 1.0);
   s.deepest_pushed_steps = std::max(s.deepest_pushed_steps, s.pushed_steps);
   out.reward = push_pull_reward(s.obs[obs_index::kOmega], s.obs[obs_index::kLambda], rotation, new_depth,
-                                in_wrong_branch, c.reward_wrong_branch, c.reward);
+                                in_wrong_branch, c.reward_wrong_branch, c.reward_time_per_step, c.reward);
 
   // A stall is wire pushed in without progress: stuck_steps pushes at the full speed (the strict rule's 24 mm
   // under the constant push) since the tip last gained stuck_progress_mm. An actor that stops to aim does not

@@ -22,10 +22,10 @@ double navigation_reward(double omega, double lambda_ratio, double action, const
 }
 
 double push_pull_reward(double omega, double lambda_ratio, double rotation, double new_depth, bool in_wrong_branch,
-                        double wrong_branch_cost, const RewardShape& shape) {
+                        double wrong_branch_cost, double time_cost, const RewardShape& shape) {
   const double forward = std::clamp(new_depth, 0.0, 1.0);
   return forward * (orientation_term(omega, shape) + progress_term(lambda_ratio)) + effort_term(rotation) -
-         (in_wrong_branch ? wrong_branch_cost : 0.0);
+         (in_wrong_branch ? wrong_branch_cost : 0.0) - time_cost;
 }
 
 }  // namespace gw

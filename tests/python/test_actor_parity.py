@@ -110,3 +110,34 @@ def test_export_refuses_gsde_hardtanh(tmp_path):
     model = SAC("MlpPolicy", BoxEnv(), use_sde=True, device="cpu")  # clip_mean=2.0 -> Hardtanh
     with pytest.raises(ValueError, match="Hardtanh"):
         export_sac_actor(model, tmp_path / "a.json")
+
+
+def test_widened_rotation_actor_starts_the_push_pull_actor(tmp_path):
+    """A rotation actor (obs/3, act/1) widened for a --push-pull run: the rotation is the shipped actor's on
+    every obs/5 observation whatever the two new entries, the insertion pushes at tanh(2), torch (after
+    load_actor_json) = the C++ runtime on the widened JSON = the C++ runtime on the original."""
+    import json
+
+    from guidewire_nav.export_actor import load_actor_json, widen_to_push_pull
+
+    binary = _policy_run()
+    shipped = Path(__file__).resolve().parents[2] / "policy" / "trained" / "sac_actor.json"
+    original = json.loads(shipped.read_text())
+    widened = widen_to_push_pull(original)
+    assert (widened["obs_layout"], widened["action_layout"]) == ("guidewire-nav/obs/5", "guidewire-nav/act/2")
+    (tmp_path / "widened.json").write_text(json.dumps(widened))
+    rng = np.random.default_rng(3)
+    obs = rng.uniform(-1, 1, (300, 14)).astype(np.float32)
+    obs[:, 12] = rng.uniform(-1, 1, 300)  # last insertion
+    obs[:, 13] = rng.integers(0, 2, 300)  # wrong-branch flag
+    rotation = _run(binary, shipped, obs[:, :12])
+    both = _run(binary, tmp_path / "widened.json", obs)
+    assert np.max(np.abs(both[:, 0] - rotation[:, 0])) < 1e-6  # printed to 9 digits, summed in another order
+    assert np.allclose(both[:, 1], np.tanh(2.0))
+    assert np.std(rotation[:, 0]) > 0.1
+    model = _model([256, 256, 256], BoxEnv(obs_size=14, low=(-1.0, -1.0), high=(1.0, 1.0)))
+    load_actor_json(model, widened)
+    expected, _ = model.predict(obs, deterministic=True)
+    assert np.max(np.abs(expected - both)) < 1e-5
+    with pytest.raises(ValueError, match="obs/3 rotation actor"):
+        widen_to_push_pull(widened)

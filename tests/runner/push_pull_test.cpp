@@ -99,6 +99,22 @@ TEST_CASE("push/pull: stopping holds the wire and is no stall, pulling stops at 
   CHECK_THROWS_WITH(gw::step_episode(task, s, gw::Action{0.0, std::nan("")}), Catch::Contains("insertion"));
 }
 
+TEST_CASE("push/pull: a time cost comes off every step, stopped or moving, and nothing else changes",
+          "[runner][push_pull]") {
+  gw::NavigationTask plain = t1_task(true, 0), costly = t1_task(true, 0);
+  costly.config.reward_time_per_step = 0.25;
+  gw::EpisodeState a = gw::reset_episode(plain, 0, 1, 3), b = gw::reset_episode(costly, 0, 1, 3);
+  for (int k = 0; k < 40; ++k) {
+    const gw::Action act{0.3, k < 10 ? 1.0 : (k < 25 ? 0.0 : 1.0)};  // push, stop, push on
+    const gw::StepOutcome oa = gw::step_episode(plain, a, act), ob = gw::step_episode(costly, b, act);
+    REQUIRE(a.tip == b.tip);
+    REQUIRE(ob.reward == Approx(oa.reward - 0.25).margin(1e-12));
+    if (k >= 10 && k < 25) REQUIRE(ob.reward == Approx(-0.2 * 0.3 - 0.25));  // stopping costs time now
+  }
+  costly.config.reward_time_per_step = -1.0;
+  CHECK_THROWS_WITH(gw::check_task_config(costly.config), Catch::Contains("reward_time_per_step"));
+}
+
 TEST_CASE("push/pull: a stall is wire pushed in without progress", "[runner][push_pull]") {
   // With a retry left the procedure goes on in the wrong child; pushing on along it at a third of the speed
   // makes no progress along the course, and the stall comes after 24 mm of wire pushed in: three times the
@@ -138,7 +154,7 @@ TEST_CASE("push/pull with recovery: the actor pulls out of a wrong child itself,
   CHECK(out.info.in_control);
   // In the wrong child the step costs reward_wrong_branch more than the push/pull reward without it.
   const double without = gw::push_pull_reward(out.obs[gw::obs_index::kOmega], out.obs[gw::obs_index::kLambda],
-                                              out.obs[gw::obs_index::kAction], 1.0, false, 0.0, task.config.reward);
+                                              out.obs[gw::obs_index::kAction], 1.0, false, 0.0, 0.0, task.config.reward);
   CHECK(out.reward == Approx(without - task.config.reward_wrong_branch));
   // 2. Pull back until the tip is out of it (bounded).
   int pulled = 0;

@@ -15,6 +15,7 @@ CLI: python -m guidewire_nav.export_actor model.zip out.json [--vecnormalize sta
 from __future__ import annotations
 
 import argparse
+import copy
 import json
 import pickle
 import subprocess
@@ -137,31 +138,68 @@ def export_sac_actor(model, path, obs_layout: str = "unspecified", vecnormalize=
     return d
 
 
+PUSH_PULL_INSERTION_BIAS = 2.0  # tanh(2) = 0.96: a widened actor starts out pushing at 96% of the push speed
+
+
+def widen_to_push_pull(d: dict, insertion_bias: float = PUSH_PULL_INSERTION_BIAS) -> dict:
+    """A rotation actor (obs/3, act/1) as the start of a push/pull actor (obs/5, act/2).
+
+    in:  d, an actor dictionary of layout guidewire-nav/obs/3 and guidewire-nav/act/1
+    out: a new dictionary of layouts obs/5 and act/2 whose rotation output is d's on every observation (the
+         two new inputs, the last insertion and the wrong-branch flag, get zero weights) and whose insertion
+         output is tanh(insertion_bias) everywhere (zero weights). Why: started so, the push/pull run begins as
+         the shipped rotation actor under a near-constant push and has to learn only when to pull back and
+         stop, not to aim again (the first push/pull run, from scratch, had not learnt to aim in 40k steps)."""
+    if d.get("obs_layout") != "guidewire-nav/obs/3" or d.get("action_size") != 1:
+        raise ValueError(f"widen_to_push_pull: need an obs/3 rotation actor (action size 1), got "
+                         f"{d.get('obs_layout')!r} with action size {d.get('action_size')!r}")
+    if d.get("obs_normalization"):
+        raise ValueError("widen_to_push_pull: an actor with observation normalisation is not supported")
+    layers = copy.deepcopy(d["layers"])
+    first, last = layers[0], layers[-1]
+    rows, cols = first["shape"]
+    w = np.asarray(first["weight"], dtype=np.float64).reshape(rows, cols)
+    first["weight"] = np.hstack([w, np.zeros((rows, 2))]).reshape(-1).tolist()
+    first["shape"] = [rows, cols + 2]
+    hidden = last["shape"][1]
+    last["weight"] = list(last["weight"]) + [0.0] * hidden
+    last["bias"] = list(last["bias"]) + [float(insertion_bias)]
+    last["shape"] = [2, hidden]
+    out = {**copy.deepcopy(d), "obs_size": cols + 2, "action_size": 2, "obs_layout": "guidewire-nav/obs/5",
+           "action_layout": "guidewire-nav/act/2", "layers": layers,
+           "output": {"squash": "tanh", "low": list(d["output"]["low"]) + [-1.0],
+                      "high": list(d["output"]["high"]) + [1.0]}}
+    out["source"] = {**d.get("source", {}), "widened_from": d.get("obs_layout")}
+    return out
+
+
 def load_actor_json(model, path, log_std: float = -2.3) -> dict:
     """The inverse of the export, for fine-tuning a shipped actor whose critic was not kept: copy the
-    JSON's layers into `model`'s actor (latent_pi + mu) and return the dictionary. The JSON holds only
+    JSON's layers (`path`: a file, or the dictionary itself) into `model`'s actor (latent_pi + mu) and
+    return the dictionary. The JSON holds only
     the deterministic mean, so the log-std head is set to a constant `log_std` (zero weights): -2.3 gives
     std ~0.1 before tanh, about what SAC's automatic entropy (target -1 for one action) settles at.
     Refuses, naming the mismatch, an actor whose layer shapes, activations, action bounds or observation
     normalisation differ from what `model` computes, rather than loading it half."""
     import torch
 
-    d = json.loads(Path(path).read_text())
+    d = path if isinstance(path, dict) else json.loads(Path(path).read_text())
+    name = f"actor {d.get('obs_layout')}/{d.get('action_layout')}" if isinstance(path, dict) else path
     if d.get("format") != FORMAT:
-        raise ValueError(f"load_actor_json: {path}: format {d.get('format')!r}, expected {FORMAT!r}")
+        raise ValueError(f"load_actor_json: {name}: format {d.get('format')!r}, expected {FORMAT!r}")
     if d.get("obs_normalization"):
-        raise ValueError(f"load_actor_json: {path}: has observation normalisation; SB3's MlpPolicy has none")
+        raise ValueError(f"load_actor_json: {name}: has observation normalisation; SB3's MlpPolicy has none")
     actor = model.policy.actor
     if actor.use_sde:
         raise ValueError("load_actor_json: the model uses gSDE; its log-std is not a layer to set")
     want = _actor_layers(actor)
     have = d["layers"]
     if [(l["shape"], l["activation"]) for l in have] != [(l["shape"], l["activation"]) for l in want]:
-        raise ValueError(f"load_actor_json: {path}: layers {[(l['shape'], l['activation']) for l in have]} do not "
+        raise ValueError(f"load_actor_json: {name}: layers {[(l['shape'], l['activation']) for l in have]} do not "
                          f"match the model's {[(l['shape'], l['activation']) for l in want]} (check --net-arch)")
     for key in ("low", "high"):
         if not np.allclose(d["output"][key], getattr(model.action_space, key)):
-            raise ValueError(f"load_actor_json: {path}: action {key} {d['output'][key]} differs from the model's "
+            raise ValueError(f"load_actor_json: {name}: action {key} {d['output'][key]} differs from the model's "
                              f"{getattr(model.action_space, key).tolist()}")
     linears = [m for m in actor.latent_pi if isinstance(m, nn.Linear)] + [actor.mu]
     with torch.no_grad():

@@ -57,6 +57,8 @@ class Settings:
                            "the actor pulls back itself; docs/recovery.md)")
     reward_wrong_branch: float = arg(1.0, "--push-pull: reward lost per env step while the tip is in a wrong "
                                           "child")
+    reward_time: float = arg(0.0, "--push-pull: reward lost every env step, a cost of time (0: stopping is free; "
+                                  "engine/task/reward.hpp)")
     reward_omega_centre: float = arg(0.1, "centre of the reward sigmoid 2/(1+exp(slope(omega-centre)))-1; paper "
                                           "Eq. 3: 0.1 (engine/task/reward.hpp says why to change)")
     reward_omega_slope: float = arg(5.0, "slope of the reward sigmoid; paper Eq. 3: 5")
@@ -67,7 +69,9 @@ class Settings:
     random_start: float = arg(0.0, "per-episode probability of starting part-way to the bifurcation (trees hand "
                                    "control over near one; task_config.hpp says why)")
     init_model: str = arg("", "fine-tune: start from this SB3 SAC zip (e.g. a checkpoint)")
-    init_actor: str = arg("", "fine-tune: start the actor from an exported actor JSON (fresh critics)")
+    init_actor: str = arg("", "fine-tune: start the actor from an exported actor JSON (fresh critics); with "
+                              "--push-pull a rotation actor (obs/3, act/1) starts the rotation output, the "
+                              "insertion output starts pushing (export_actor.widen_to_push_pull)")
     init_log_std: float = arg(-2.3, "with --init-actor: its log-std head (the JSON has only the mean); -2.3 = std "
                                     "~0.1 before tanh")
     actor_freeze_steps: int = arg(0, "environment steps the actor (and entropy coefficient) stay fixed while fresh "
@@ -150,7 +154,8 @@ def server_args(s: Settings) -> list[str]:
             "--roll-disturbance", repr(s.roll_disturbance), "--random-start", repr(s.random_start),
             "--junctions", s.junctions] + (["--omega-side"] if s.omega_side else []) + (
         ["--recovery", str(s.recovery)] if s.recovery else []) + (
-        ["--push-pull", "--reward-wrong-branch", repr(s.reward_wrong_branch)] if s.push_pull else [])
+        ["--push-pull", "--reward-wrong-branch", repr(s.reward_wrong_branch), "--reward-time", repr(s.reward_time)]
+        if s.push_pull else [])
 
 
 def make_env_fn(s: Settings, rank: int, eval_env: bool = False, ray_server=None, seed_offset: int = 0):
@@ -464,9 +469,12 @@ def main(argv=None) -> int:
         model = SACWithActorRate("MlpPolicy", vec_env, ent_coef=s.ent_coef,
                                  policy_kwargs={"net_arch": [int(n) for n in s.net_arch.split(",")]}, **sac_settings)
     if s.init_actor:  # a shipped actor without its critics: only the mean is kept, the critics start fresh
-        from guidewire_nav.export_actor import load_actor_json
+        from guidewire_nav.export_actor import load_actor_json, widen_to_push_pull
 
-        load_actor_json(model, s.init_actor, log_std=s.init_log_std)
+        start_actor = json.loads(Path(s.init_actor).read_text())
+        if s.push_pull and start_actor.get("action_size") == 1:  # a rotation actor starts the push/pull one
+            start_actor = widen_to_push_pull(start_actor)
+        load_actor_json(model, start_actor, log_std=s.init_log_std)
     model.set_logger(configure(str(out / "logs"), ["csv", "tensorboard"]))
 
     # --- callbacks: actor freeze and anchor (fine-tuning), periodic evaluation keeping the best actor,

@@ -42,8 +42,9 @@ int main(int argc, char** argv) {
                "also observe omega's sine, on which side of the wrong branch the tip bends (layout obs/3; "
                "needs --omega-plane approach)");
   app.add_option("--junctions", junctions,
-                 "how a junction's wrong branches enter omega: separate (the paper's) or combined (k-way junctions and "
-                 "closely spaced forks aimed at together; with --omega-side: layout obs/4, docs/junctions.md)")
+                 "how a junction's wrong branches enter omega: separate (the paper's), combined (k-way junctions and "
+                 "closely spaced forks aimed at together; with --omega-side: layout obs/4) or kway (k-way junctions "
+                 "only, close forks apart; layout obs/6); docs/junctions.md")
       ->capture_default_str();
   bool push_pull = false;
   app.add_flag("--push-pull", push_pull,

@@ -42,9 +42,9 @@ class PolicyController final : public Controller {
   void adapt(TaskConfig& config) const override {
     config.observation.omega_plane = layout_.omega_plane;
     config.observation.omega_side = layout_.omega_side;
-    // An obs/4 actor needs combined junctions; an obs/3 one runs with either (the entries mean the same
-    // on two-way forks), as the user set it.
-    if (layout_.junctions == JunctionModel::kCombined) config.observation.junctions = JunctionModel::kCombined;
+    // An obs/4 actor needs combined junctions and an obs/6 one k-way junctions; an obs/3 one runs with any
+    // reading (the entries mean the same on two-way forks), as the user set it.
+    if (layout_.junctions != JunctionModel::kSeparate) config.observation.junctions = layout_.junctions;
     config.observation.push_pull = layout_.push_pull;
     config.action = action_layout_;
   }

@@ -8,7 +8,7 @@ OmegaReading bifurcation_omega(const CourseBifurcation& b, const Eigen::Vector3d
                                JunctionModel model) {
   OmegaReading r;
   if (b.wrong_in_plane.empty()) return r;
-  if (model == JunctionModel::kCombined && b.wrong_in_plane.size() > 1) {
+  if (model != JunctionModel::kSeparate && b.wrong_in_plane.size() > 1) {
     // k wrong directions: aim away from their mean (zero where they cancel, e.g. the middle exit of a
     // planar trifurcation: no bend is better than another there, as for a wrong branch along the normal).
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();

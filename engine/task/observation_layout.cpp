@@ -16,13 +16,15 @@ struct Layout {
   JunctionModel junctions;
   bool push_pull;
 };
+// obs/6 is obs/3 with k-way junctions read together (close forks apart): the same entries again.
 // obs/5 is obs/3 with the push/pull actor's two entries (act/2) after omega_side.
 constexpr Layout kLayouts[] = {
     {"guidewire-nav/obs/1", OmegaPlane::kCorrectBranch, false, JunctionModel::kSeparate, false},
     {"guidewire-nav/obs/2", OmegaPlane::kApproach, false, JunctionModel::kSeparate, false},
     {"guidewire-nav/obs/3", OmegaPlane::kApproach, true, JunctionModel::kSeparate, false},
     {"guidewire-nav/obs/4", OmegaPlane::kApproach, true, JunctionModel::kCombined, false},
-    {"guidewire-nav/obs/5", OmegaPlane::kApproach, true, JunctionModel::kSeparate, true}};
+    {"guidewire-nav/obs/5", OmegaPlane::kApproach, true, JunctionModel::kSeparate, true},
+    {"guidewire-nav/obs/6", OmegaPlane::kApproach, true, JunctionModel::kKWay, false}};
 }  // namespace
 
 const char* ObservationLayout::name() const {
@@ -33,6 +35,8 @@ const char* ObservationLayout::name() const {
     throw std::invalid_argument("the push/pull entries need omega's plane 'approach', omega_side and separate junctions (layout obs/5)");
   if (omega_side && omega_plane != OmegaPlane::kApproach)
     throw std::invalid_argument("omega_side needs omega's plane 'approach' (no layout has it in the paper's plane)");
+  if (junctions == JunctionModel::kKWay)
+    throw std::invalid_argument("k-way junctions need omega's plane 'approach' and omega_side (layout obs/6)");
   throw std::invalid_argument("combined junctions need omega's plane 'approach' and omega_side (layout obs/4)");
 }
 
@@ -62,11 +66,17 @@ const char* omega_plane_name(OmegaPlane plane) {
 JunctionModel parse_junction_model(const std::string& text) {
   if (text == "separate") return JunctionModel::kSeparate;
   if (text == "combined") return JunctionModel::kCombined;
-  throw std::invalid_argument("junction model '" + text + "' is not one of separate, combined");
+  if (text == "kway") return JunctionModel::kKWay;
+  throw std::invalid_argument("junction model '" + text + "' is not one of separate, combined, kway");
 }
 
 const char* junction_model_name(JunctionModel model) {
-  return model == JunctionModel::kSeparate ? "separate" : "combined";
+  switch (model) {
+    case JunctionModel::kSeparate: return "separate";
+    case JunctionModel::kCombined: return "combined";
+    case JunctionModel::kKWay: return "kway";
+  }
+  return "separate";
 }
 
 }  // namespace gw

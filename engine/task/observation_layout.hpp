@@ -39,12 +39,17 @@ enum class JunctionModel {
               // away from all of them, reaching -1 where the max could not). Identical to kSeparate on a
               // two-way fork with no fork close behind it; measured worse than kSeparate where two close forks' wrong
               // branches lie on opposite sides (their mean cancels; results/junctions), so off by default
+  kKWay,      // the mean of the wrong directions within one k-way junction only (kCombined's second half);
+              // closely spaced forks each on their own, as kSeparate. Why: the close-forks row showed that
+              // aiming at two forks together throws away which side each wrong branch is on, while the
+              // separate reading aims away from one and then the next (results/junctions). Identical to
+              // kSeparate on a tree of two-way forks and to kCombined on one without close forks
 };
 
 struct ObservationLayout {
   OmegaPlane omega_plane = OmegaPlane::kApproach;  // kCorrectBranch = the paper's definition (obs/1)
   bool omega_side = false;                         // obs/3, obs/4: omega's sine as a twelfth entry
-  JunctionModel junctions = JunctionModel::kSeparate;  // kCombined: obs/4
+  JunctionModel junctions = JunctionModel::kSeparate;  // kCombined: obs/4, kKWay: obs/6
   bool push_pull = false;                          // obs/5: the insertion action and the wrong-branch flag
                                                    // as entries 13 and 14 (the act/2 actor's)
 
@@ -61,7 +66,7 @@ struct ObservationLayout {
 OmegaPlane parse_omega_plane(const std::string& text);
 const char* omega_plane_name(OmegaPlane plane);
 
-// "separate" | "combined"; throws std::invalid_argument for anything else.
+// "separate" | "combined" | "kway"; throws std::invalid_argument for anything else.
 JunctionModel parse_junction_model(const std::string& text);
 const char* junction_model_name(JunctionModel model);
 

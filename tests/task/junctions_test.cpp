@@ -105,6 +105,17 @@ TEST_CASE("a 3-way junction in three azimuths: combined omega reaches -1 aiming 
   CHECK(best_over_roll(bc, gw::JunctionModel::kCombined, &azimuth) == Approx(-1.0).margin(1e-3));
   CHECK(std::min(azimuth, 2.0 * kPi - azimuth) < 2.0 * kPi / 360.0 + 1e-9);
   CHECK(best_over_roll(bs, gw::JunctionModel::kSeparate) > -0.87);
+  // kway reads one k-way junction as combined does: the same directions, the same mean.
+  gw::TaskConfig kway;
+  kway.observation.junctions = gw::JunctionModel::kKWay;
+  const gw::CourseBifurcation bk = gw::make_course(g, lines, target, kway).bifurcations.at(0);
+  REQUIRE(bk.wrong_in_plane.size() == 2);
+  for (const Vector3d& k3 : {towards, Vector3d(0, 0, kRest), Vector3d(-0.1, 0.05, 0.17)}) {
+    const gw::OmegaReading rk = gw::bifurcation_omega(bk, k3, kRest, gw::JunctionModel::kKWay);
+    const gw::OmegaReading rc = gw::bifurcation_omega(bc, k3, kRest, gw::JunctionModel::kCombined);
+    CHECK(rk.omega == rc.omega);
+    CHECK(rk.side == rc.side);
+  }
 }
 
 TEST_CASE("a planar trifurcation: the side exit aims away from both others, the middle exit reads 0 combined",
@@ -190,8 +201,9 @@ TEST_CASE("closely spaced forks: the first fork also aims away from the second's
     gw::number_targets(g);
     return g;
   };
-  gw::TaskConfig separate, combined;
+  gw::TaskConfig separate, combined, kway;
   combined.observation.junctions = gw::JunctionModel::kCombined;  // close: under 2 diameters = 8 mm
+  kway.observation.junctions = gw::JunctionModel::kKWay;           // close forks apart, as separate
   for (double gap : {5.0, 20.0}) {
     INFO("gap " << gap << " mm");
     const gw::CenterlineGraph g = graph(gap);
@@ -202,6 +214,19 @@ TEST_CASE("closely spaced forks: the first fork also aims away from the second's
     CHECK(cs.bifurcations[0].wrong_in_plane.size() == 1);
     CHECK(cc.bifurcations[0].wrong_in_plane.size() == (gap < 8.0 ? 2u : 1u));
     CHECK(cc.bifurcations[1].wrong_in_plane.size() == 1);  // nothing follows the second fork
+    // kway keeps each fork to its own wrong child and reads it as separate does, bit for bit.
+    const gw::Course ck = gw::make_course(g, lines, straight, kway);
+    REQUIRE(ck.bifurcations.size() == 2);
+    for (size_t k = 0; k < 2; ++k) {
+      REQUIRE(ck.bifurcations[k].wrong_in_plane.size() == 1);
+      CHECK(ck.bifurcations[k].wrong_in_plane[0] == cs.bifurcations[k].wrong_in_plane[0]);
+      for (const Vector3d& k3 : {Vector3d(0.2, 0, 0), Vector3d(0, 0, 0.2), Vector3d(-0.1, 0.05, 0.17)}) {
+        const gw::OmegaReading rk = gw::bifurcation_omega(ck.bifurcations[k], k3, kRest, gw::JunctionModel::kKWay);
+        const gw::OmegaReading rs = gw::bifurcation_omega(cs.bifurcations[k], k3, kRest, gw::JunctionModel::kSeparate);
+        CHECK(rk.omega == rs.omega);
+        CHECK(rk.side == rs.side);
+      }
+    }
     if (gap < 8.0) {
       // Aiming away from -x only (the first fork alone) points the tip at the second fork's +z child
       // half the time; the combined reading is lowest bent away from both, towards +x -z.
@@ -226,7 +251,17 @@ TEST_CASE("layout obs/4 is obs/3 with combined junctions", "[task][junctions]") 
   c.junctions = gw::JunctionModel::kCombined;  // obs/2 with combined junctions: no such layout
   CHECK_THROWS_WITH(c.name(), Catch::Contains("obs/4"));
   CHECK(gw::parse_junction_model("combined") == gw::JunctionModel::kCombined);
-  CHECK_THROWS_WITH(gw::parse_junction_model("merged"), Catch::Contains("separate, combined"));
+  CHECK_THROWS_WITH(gw::parse_junction_model("merged"), Catch::Contains("separate, combined, kway"));
+  // obs/6: obs/3 with k-way junctions read together, close forks apart.
+  gw::ObservationLayout k = gw::ObservationLayout::parse("guidewire-nav/obs/6");
+  CHECK(k.junctions == gw::JunctionModel::kKWay);
+  CHECK(k.omega_side);
+  CHECK(k.size() == gw::kSideObservationSize);
+  CHECK(std::string(k.name()) == "guidewire-nav/obs/6");
+  CHECK(gw::parse_junction_model("kway") == gw::JunctionModel::kKWay);
+  CHECK(std::string(gw::junction_model_name(gw::JunctionModel::kKWay)) == "kway");
+  k.omega_side = false;
+  CHECK_THROWS_WITH(k.name(), Catch::Contains("obs/6"));
   gw::TaskConfig bad;
   bad.close_junction_diameters = -1;
   CHECK_THROWS_WITH(gw::check_task_config(bad), Catch::Contains("close_junction_diameters"));

@@ -44,7 +44,8 @@ import guidewire_nav
 PROTOCOL = "guidewire-nav/protocol/1"
 # The observation layout is the server's (spec: "obs_layout" and observation_space.names; C++
 # ObservationLayout, engine/task/observation_layout.hpp): obs/1 and obs/2, 11 values, omega's plane differs; obs/3:
-# obs/2 and omega's sine (12 values); obs/4: obs/3 with combined junctions. The client reads what it needs
+# obs/2 and omega's sine (12 values); obs/4 and obs/6: obs/3 with combined or k-way junctions; obs/5: obs/3 with the
+# push/pull entries (14 values). The client reads what it needs
 # (omega's index) from the names and keeps no copy of the layouts.
 
 

@@ -1,7 +1,8 @@
 """Tables of results/junctions/README.md from the evaluate runs beside this file (standard library only).
 
 separate/, separate_close/: `evaluate --rows ...` with the paper's junction reading (every controller, ceiling);
-combined/, combined_close/: the same rows and seeds with `--junctions combined` (the controllers that read omega).
+combined/, combined_close/: the same rows and seeds with `--junctions combined` (the controllers that read omega);
+separate_outer_50/: the corrected pair, paper's reading; kway_outer/: its trifurcation row with `--junctions kway`.
 """
 import json
 import os
@@ -79,3 +80,33 @@ for name in ["trifurcation tree", "closely spaced forks"]:
             per[t][label] = f"{k}/{len(mine)}" + (" (" + ", ".join(f"{o} {n}" for o, n in losses.items()) + ")" if losses else "")
     for t in sorted(per):
         print(f"| {name} | T{t} | {per[t].get('separate', '')} | {per[t].get('combined', '')} |")
+
+
+print("\nThe corrected trifurcation tree, k-way junctions read together (`--junctions kway`) against the paper's reading, "
+      "same 50 episodes:\n")
+outer, kway = rows("separate_outer_50"), rows("kway_outer")
+name = "trifurcation tree (outer side branches)"
+if name in outer and name in kway:
+    print("| row | junctions | " + " | ".join(COLUMNS) + " | reached by a controller or rotation schedule |")
+    print("|---|---|" + "---|" * (len(COLUMNS) + 1))
+    for label, table in (("separate (paper)", outer), ("kway", kway)):
+        r = table[name]
+        cells = [cell(r["results"][c]) if c in r["results"] else "same as separate (no omega)" for c in COLUMNS]
+        ceiling = r.get("ceiling")
+        ceil = f"{ceiling['reached']}/{ceiling['episodes']}" if ceiling else "—"
+        print(f"| {name} | {label} | " + " | ".join(cells) + f" | {ceil} |")
+    print("\n| column | won (kway only) | lost (separate only) | p |")
+    print("|---|---|---|---|")
+    for c in COLUMNS[:3]:
+        a, b = by_episode(outer[name]["results"][c]), by_episode(kway[name]["results"][c])
+        won = sum(1 for k in a if b.get(k) and not a[k])
+        lost = sum(1 for k in a if a[k] and not b.get(k))
+        print(f"| {c} | {won} | {lost} | {sign_test(won, lost):.3f} |")
+    print("\n| target | SAC separate | SAC kway |")
+    print("|---|---|---|")
+    for t in sorted({e["target"] for e in kway[name]["results"]["sac-policy"]["results"]}):
+        cells = []
+        for table in (outer, kway):
+            mine = [e for e in table[name]["results"]["sac-policy"]["results"] if e["target"] == t]
+            cells.append(f"{sum(e['outcome'] == 'success' for e in mine)}/{len(mine)}")
+        print(f"| T{t} | " + " | ".join(cells) + " |")

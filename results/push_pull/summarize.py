@@ -1,7 +1,8 @@
 """Tables of results/push_pull/README.md from the evaluate runs beside this file (standard library only).
 
 results.json: the push/pull actor (act/2) with --recovery 3 on the coronary-like and deformed coronary rows;
-50k/results.json: the run continued (--resume) to its 50,000-step checkpoint; scripted/results.json: the scripted rule with the
+50k/results.json: the run continued (--resume) to its 50,000-step checkpoint; time_cost/results.json: the second
+run (a cost of time in the reward, started from the shipped rotation actor); scripted/results.json: the scripted rule with the
 recovery wrapper (--recovery 3) on the same episodes, re-run at this commit; ../recovery/: the shipped
 rotation-only SAC with the wrapper (same episodes, seeds 0-24).
 Sign tests: exact two-sided binomial on the episodes where exactly one of the two succeeded, as the table's.
@@ -39,6 +40,7 @@ def mean(values):
 
 runs = {"push/pull SAC (act/2)": (load("results.json"), "sac-policy"),
         "push/pull SAC (act/2), continued to 50k steps": (load("50k", "results.json"), "sac-policy"),
+        "push/pull SAC (act/2), time cost, from the rotation actor": (load("time_cost", "results.json"), "sac-policy"),
         "scripted omega + wrapper": (load("scripted", "results.json"), "scripted-omega"),
         "shipped SAC (act/1) + wrapper": (load("..", "recovery", "results.json") | load("..", "recovery", "deformed",
                                                                                         "results.json"), "sac-policy")}
@@ -65,6 +67,9 @@ print("| row | comparison (same episodes) | won | lost | p (sign test) |")
 print("|---|---|---|---|---|")
 pairs = [("push/pull SAC (act/2)", True, "scripted omega + wrapper", True),
          ("push/pull SAC (act/2), continued to 50k steps", True, "scripted omega + wrapper", True),
+         ("push/pull SAC (act/2), time cost, from the rotation actor", True, "scripted omega + wrapper", True),
+         ("push/pull SAC (act/2), time cost, from the rotation actor", True, "shipped SAC (act/1) + wrapper", True),
+         ("push/pull SAC (act/2), time cost, from the rotation actor", False, "shipped SAC (act/1) + wrapper", False),
          ("push/pull SAC (act/2)", True, "shipped SAC (act/1) + wrapper", True),
          ("push/pull SAC (act/2)", False, "shipped SAC (act/1) + wrapper", False)]
 for row in ROWS:

@@ -19,13 +19,13 @@ double navigation_reward(double omega, double lambda_ratio, double action, const
 // The push/pull actor's reward (action layout act/2): the paper's orientation and progress terms earned in
 // proportion to `new_depth` in [0, 1], the part of a full-speed step by which the wire went deeper than ever
 // before in the episode; the rotation effort as in Eq. 3; less `wrong_branch_cost` while the tip is in a wrong
-// child; less `time_cost` every step. Why: with the speed in the actor's hands, Eq. 3's positive terms pay for every step, so holding still
-// while aimed would pay forever; weighted by the forward insertion, pushing and pulling back in turn would
-// (a first run learnt exactly that: docs/policy_history.md). Weighted by new depth, stopping and going back
-// and forth earn nothing, and the constant push earns Eq. 3: at new depth 1 outside a wrong child and without
-// a time cost it is Eq. 3. But then stopping is free, and an actor that may enter a wrong child drifts to
-// stopping (the 50k checkpoint of the first push/pull run did: results/push_pull); a time cost makes every
-// step spent short of the target cost something (TaskConfig::reward_time_per_step).
+// child; less `time_cost` every step. Why: with the speed in the actor's hands, Eq. 3's positive terms pay
+// for every step, so holding still while aimed would pay forever; weighted by the forward insertion, pushing
+// and pulling back in turn would (a first run learnt exactly that: docs/policy_history.md). Weighted by new
+// depth, stopping and going back and forth earn nothing, and the constant push earns Eq. 3: at new depth 1
+// outside a wrong child and without a time cost it is Eq. 3. But then stopping is free, and an actor that may
+// enter a wrong child drifts to stopping (the 50k checkpoint of the first push/pull run did: results/push_pull);
+// a time cost makes every step spent short of the target cost something (TaskConfig::reward_time_per_step).
 double push_pull_reward(double omega, double lambda_ratio, double rotation, double new_depth, bool in_wrong_branch,
                         double wrong_branch_cost, double time_cost, const RewardShape& shape = {});
 

@@ -128,8 +128,8 @@ struct TaskConfig {
   // The act/2 reward (reward.hpp, push_pull_reward): the paper's terms earned in proportion to the forward
   // insertion, less this per env step while the tip is in a wrong child.
   double reward_wrong_branch = 1.0;
-  // ... and less this every env step (a cost of time; 0 = the first push/pull actor's reward, shipped as
-  // sac_actor_push_pull.json). Without it stopping is free (reward.hpp says why that matters).
+  // ... and less this every env step (a cost of time; 0 = the first push/pull run's reward; the shipped
+  // push/pull actor was trained with 0.25). Without it stopping is free (reward.hpp says why that matters).
   double reward_time_per_step = 0.0;
   // --- Force penalty (issue 37 item 4; 0 = the paper's reward, Eq. 3) ---
   // Each env step's reward loses this times the step's peak total wall force in newtons (StepInfo::

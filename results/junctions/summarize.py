@@ -36,6 +36,20 @@ def by_episode(summary):
     return {(e["anatomy"], e["target"], e["seed"]): e["outcome"] == "success" for e in summary["results"]}
 
 
+def table_row(name, label, r):
+    """One row of the success table: every column's rate (push-only only in the paper's reading) and the ceiling."""
+    cells = [cell(r["results"][c]) if c in r["results"] else "same as separate (no omega)" for c in COLUMNS]
+    ceiling = r.get("ceiling")
+    ceil = f"{ceiling['reached']}/{ceiling['episodes']}" if ceiling else "—"
+    return f"| {name} | {label} | " + " | ".join(cells) + f" | {ceil} |"
+
+
+def won_lost(paper, other):
+    """Episodes reached only with `other`'s reading, and only with the paper's."""
+    a, b = by_episode(paper), by_episode(other)
+    return sum(1 for k in a if b.get(k) and not a[k]), sum(1 for k in a if a[k] and not b.get(k))
+
+
 separate, combined = rows("separate", "separate_close"), rows("combined", "combined_close")
 print("| row | junctions | " + " | ".join(COLUMNS) + " | reached by a controller or rotation schedule |")
 print("|---|---|" + "---|" * (len(COLUMNS) + 1))
@@ -45,10 +59,7 @@ for name in ["trifurcation tree", "closely spaced forks"]:
         if r is None:
             print(f"| {name} | {label} | " + " | ".join("not run" for _ in COLUMNS) + " | |")
             continue
-        cells = [cell(r["results"][c]) if c in r["results"] else "same as separate (no omega)" for c in COLUMNS]
-        ceiling = r.get("ceiling")
-        ceil = f"{ceiling['reached']}/{ceiling['episodes']}" if ceiling else "—"
-        print(f"| {name} | {label} | " + " | ".join(cells) + f" | {ceil} |")
+        print(table_row(name, label, r))
 
 print("\nSame episodes, combined against separate (won: reached only with combined; lost: only with separate; exact sign test):\n")
 print("| row | column | won | lost | p |")
@@ -59,9 +70,7 @@ for name in ["trifurcation tree", "closely spaced forks"]:
     for c in COLUMNS[:3]:
         if c not in combined[name]["results"]:
             continue
-        a, b = by_episode(separate[name]["results"][c]), by_episode(combined[name]["results"][c])
-        won = sum(1 for k in a if b.get(k) and not a[k])
-        lost = sum(1 for k in a if a[k] and not b.get(k))
+        won, lost = won_lost(separate[name]["results"][c], combined[name]["results"][c])
         print(f"| {name} | {c} | {won} | {lost} | {sign_test(won, lost):.2f} |")
 
 print("\nPer target (SAC, successes/episodes; outcomes of the losses):\n")
@@ -90,17 +99,11 @@ if name in outer and name in kway:
     print("| row | junctions | " + " | ".join(COLUMNS) + " | reached by a controller or rotation schedule |")
     print("|---|---|" + "---|" * (len(COLUMNS) + 1))
     for label, table in (("separate (paper)", outer), ("kway", kway)):
-        r = table[name]
-        cells = [cell(r["results"][c]) if c in r["results"] else "same as separate (no omega)" for c in COLUMNS]
-        ceiling = r.get("ceiling")
-        ceil = f"{ceiling['reached']}/{ceiling['episodes']}" if ceiling else "—"
-        print(f"| {name} | {label} | " + " | ".join(cells) + f" | {ceil} |")
+        print(table_row(name, label, table[name]))
     print("\n| column | won (kway only) | lost (separate only) | p |")
     print("|---|---|---|---|")
     for c in COLUMNS[:3]:
-        a, b = by_episode(outer[name]["results"][c]), by_episode(kway[name]["results"][c])
-        won = sum(1 for k in a if b.get(k) and not a[k])
-        lost = sum(1 for k in a if a[k] and not b.get(k))
+        won, lost = won_lost(outer[name]["results"][c], kway[name]["results"][c])
         print(f"| {c} | {won} | {lost} | {sign_test(won, lost):.3f} |")
     print("\n| target | SAC separate | SAC kway |")
     print("|---|---|---|")

@@ -1,48 +1,98 @@
 #include "engine/sim/mechanics_benchmark.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 
 namespace gw {
 
+namespace {
+
+// One insertion in progress: its wire, its figures so far, and whether it has ended.
+struct InsertionRun {
+  WireState state;
+  InsertionBenchmark b;
+  double contact_sum = 0, sweep_sum = 0;
+  bool done = false;
+};
+
+InsertionRun start_insertion(const WireModel& model, const Eigen::Vector3d& inlet, const Eigen::Vector3d& direction,
+                             double roll_rad) {
+  InsertionRun r;
+  r.state = make_initial_state(model, inlet, direction, roll_rad, 2.0);
+  return r;
+}
+
+// One control step of `run` (timed), or none once it has reached `length_mm` or failed.
+void advance_insertion(const WireModel& model, const VesselScene& scene, double push_mm_per_s, double length_mm,
+                       InsertionRun& run) {
+  if (run.done || run.state.inserted_length_mm >= length_mm) {
+    run.done = true;
+    return;
+  }
+  InsertionBenchmark& b = run.b;
+  const Control control{push_mm_per_s, 0.0};
+  timespec c0{}, c1{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &c0);
+  const auto t0 = std::chrono::steady_clock::now();
+  const StepReport rep = step(model, &scene, control, run.state);
+  b.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &c1);
+  b.cpu_seconds += static_cast<double>(c1.tv_sec - c0.tv_sec) + 1e-9 * static_cast<double>(c1.tv_nsec - c0.tv_nsec);
+  ++b.control_steps;
+  b.substeps += model.substeps;
+  b.stages.detect_s += rep.timings.detect_s;
+  b.stages.assemble_s += rep.timings.assemble_s;
+  b.stages.solve_s += rep.timings.solve_s;
+  b.stages.constraints_s += rep.timings.constraints_s;
+  run.contact_sum += rep.contacts;
+  run.sweep_sum += rep.contact_iterations;
+  b.max_contacts = std::max(b.max_contacts, rep.contacts);
+  b.max_penetration_mm = std::max(b.max_penetration_mm, rep.max_penetration_mm);
+  b.split_substeps += rep.split_substeps;
+  b.free_nodes_end = rep.free_nodes;
+  if (!rep.ok) {
+    b.ok = false;
+    b.problem = rep.problem;
+    run.done = true;
+  }
+}
+
+InsertionBenchmark finish_insertion(InsertionRun& run) {
+  InsertionBenchmark b = run.b;
+  b.mean_contacts = b.control_steps > 0 ? run.contact_sum / b.control_steps : 0;
+  b.mean_pgs_sweeps = b.control_steps > 0 ? run.sweep_sum / b.control_steps : 0;
+  b.inserted_mm = run.state.inserted_length_mm;
+  b.tip = run.state.x.back();
+  return b;
+}
+
+}  // namespace
+
 InsertionBenchmark run_insertion_benchmark(const WireModel& model, const VesselScene& scene,
                                            const Eigen::Vector3d& inlet, const Eigen::Vector3d& direction,
                                            double roll_rad, double push_mm_per_s, double length_mm) {
-  InsertionBenchmark b;
-  WireState state = make_initial_state(model, inlet, direction, roll_rad, 2.0);
-  const Control control{push_mm_per_s, 0.0};
-  double contact_sum = 0, sweep_sum = 0;
-  while (state.inserted_length_mm < length_mm) {
-    timespec c0{}, c1{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &c0);
-    const auto t0 = std::chrono::steady_clock::now();
-    const StepReport rep = step(model, &scene, control, state);
-    b.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &c1);
-    b.cpu_seconds += static_cast<double>(c1.tv_sec - c0.tv_sec) + 1e-9 * static_cast<double>(c1.tv_nsec - c0.tv_nsec);
-    ++b.control_steps;
-    b.substeps += model.substeps;
-    b.stages.detect_s += rep.timings.detect_s;
-    b.stages.assemble_s += rep.timings.assemble_s;
-    b.stages.solve_s += rep.timings.solve_s;
-    b.stages.constraints_s += rep.timings.constraints_s;
-    contact_sum += rep.contacts;
-    sweep_sum += rep.contact_iterations;
-    b.max_contacts = std::max(b.max_contacts, rep.contacts);
-    b.max_penetration_mm = std::max(b.max_penetration_mm, rep.max_penetration_mm);
-    b.split_substeps += rep.split_substeps;
-    b.free_nodes_end = rep.free_nodes;
-    if (!rep.ok) {
-      b.ok = false;
-      b.problem = rep.problem;
-      break;
-    }
+  InsertionRun run = start_insertion(model, inlet, direction, roll_rad);
+  while (!run.done) advance_insertion(model, scene, push_mm_per_s, length_mm, run);
+  return finish_insertion(run);
+}
+
+std::vector<InsertionBenchmark> run_insertion_benchmarks_interleaved(
+    const WireModel& model, const std::vector<const VesselScene*>& scenes, const Eigen::Vector3d& inlet,
+    const Eigen::Vector3d& direction, double roll_rad, double push_mm_per_s, double length_mm, int chunk) {
+  std::vector<InsertionRun> runs;
+  for (std::size_t i = 0; i < scenes.size(); ++i) runs.push_back(start_insertion(model, inlet, direction, roll_rad));
+  for (bool any = true; any;) {
+    any = false;
+    for (std::size_t i = 0; i < scenes.size(); ++i)
+      for (int k = 0; k < std::max(1, chunk) && !runs[i].done; ++k) {
+        advance_insertion(model, *scenes[i], push_mm_per_s, length_mm, runs[i]);
+        any = any || !runs[i].done;
+      }
   }
-  b.mean_contacts = b.control_steps > 0 ? contact_sum / b.control_steps : 0;
-  b.mean_pgs_sweeps = b.control_steps > 0 ? sweep_sum / b.control_steps : 0;
-  b.inserted_mm = state.inserted_length_mm;
-  b.tip = state.x.back();
-  return b;
+  std::vector<InsertionBenchmark> out;
+  for (InsertionRun& run : runs) out.push_back(finish_insertion(run));
+  return out;
 }
 
 std::vector<ScalingPoint> run_scaling_benchmark(const std::vector<int>& node_counts, int substeps) {

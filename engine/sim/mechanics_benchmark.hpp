@@ -33,6 +33,14 @@ InsertionBenchmark run_insertion_benchmark(const WireModel& model, const VesselS
                                            const Eigen::Vector3d& inlet, const Eigen::Vector3d& direction,
                                            double roll_rad, double push_mm_per_s, double length_mm);
 
+// run_insertion_benchmark in each of `scenes` (the same wire and insertion), advanced in turn `chunk`
+// control steps at a time in this thread: a change of the machine's speed during the run (another job, a
+// shared core) weighs on every scene alike, so their steps per second compare as a ratio. Each result
+// is run_insertion_benchmark's (the physics does not depend on the interleaving; only the timings do).
+std::vector<InsertionBenchmark> run_insertion_benchmarks_interleaved(
+    const WireModel& model, const std::vector<const VesselScene*>& scenes, const Eigen::Vector3d& inlet,
+    const Eigen::Vector3d& direction, double roll_rad, double push_mm_per_s, double length_mm, int chunk);
+
 struct ScalingPoint {
   int nodes = 0, free_nodes = 0;
   double us_per_substep = 0;          // assemble + solve of the free wire (no contact)

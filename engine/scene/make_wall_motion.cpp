@@ -24,7 +24,7 @@ void check_timing(double bpm, double phase_offset, double systole) {
 }
 
 // Faces around each vertex in ascending face order (the order make_vessel_scene accumulates vertex
-// normals in), the longest edge, a fresh id.
+// normals in), each face's corners in one record, the longest edge, a fresh id.
 void finish_wall_motion(const TriangleMesh& rest, WallMotion& m) {
   const int nv = static_cast<int>(rest.V.rows()), nf = static_cast<int>(rest.F.rows());
   if (nv == 0 || nf == 0) throw std::invalid_argument("wall motion: the rest mesh is empty");
@@ -33,6 +33,8 @@ void finish_wall_motion(const TriangleMesh& rest, WallMotion& m) {
   for (int f = 0; f < nf; ++f)
     for (int c = 0; c < 3; ++c) ++m.vertex_face_begin[rest.F(f, c) + 1];
   for (int i = 0; i < nv; ++i) m.vertex_face_begin[i + 1] += m.vertex_face_begin[i];
+  m.face_vertices.resize(nf);
+  for (int f = 0; f < nf; ++f) m.face_vertices[f] = {rest.F(f, 0), rest.F(f, 1), rest.F(f, 2)};
   m.vertex_face.assign(3 * nf, 0);
   m.vertex_corner.assign(3 * nf, 0);
   std::vector<int> fill(m.vertex_face_begin.begin(), m.vertex_face_begin.end() - 1);

@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -14,18 +15,17 @@ namespace gw {
 
 namespace {
 
-// The current corners, unit normal and bounding sphere of face f (make_vessel_scene's formulas; the
-// centre is recomputed by the same formula, bit for bit). A time's faces are kept in a dense pool in the
-// order they were first asked for, found through one 8-byte key per mesh face (epoch, pool slot): a
-// sub-step's queries touch faces scattered over the whole mesh, and their cost was mostly cache misses.
+// The current corners, unit normal and bounding sphere of face f (make_vessel_scene's formulas, bit for
+// bit). A time's faces are kept in a dense pool in the order they were first asked for, found through one
+// 8-byte key per mesh face (epoch, pool slot): a sub-step's queries touch faces scattered over the whole
+// mesh, and their cost was mostly cache misses.
 struct Face {
-  Eigen::Vector3d a, b, c, n;
+  Eigen::Vector3d a, b, c, n, centre;
   double radius;
-  Eigen::Vector3d centre() const { return (a + b + c) / 3.0; }
 };
-// A current vertex position and its stamp in one line; the vertex normal's stamp beside it.
+// A current vertex position, its rest position and its stamps in one cache line.
 struct Vertex {
-  Eigen::Vector3d x;
+  Eigen::Vector3d x, rest;
   int stamp = 0, normal_stamp = 0;
 };
 
@@ -62,6 +62,7 @@ CurrentWallCache& cache_for(const VesselScene& s, double t) {
   if (static_cast<int>(c.v.size()) != m.vertices || c.faces.size() != static_cast<std::size_t>(s.mesh.F.rows()) ||
       c.epoch == std::numeric_limits<int>::max()) {
     c.v.assign(m.vertices, Vertex{});
+    for (int i = 0; i < m.vertices; ++i) c.v[i].rest = s.mesh.V.row(i).transpose();
     c.n.resize(m.vertices);
     c.face_key.assign(s.mesh.F.rows(), 0);
     c.faces.resize(s.mesh.F.rows());
@@ -79,7 +80,9 @@ CurrentWallCache& cache_for(const VesselScene& s, double t) {
 const Eigen::Vector3d& vertex(CurrentWallCache& c, const VesselScene& s, int i) {
   Vertex& v = c.v[i];
   if (v.stamp != c.epoch) {
-    v.x = wall_vertex_position(*s.motion, s.mesh, i, c.at);
+    // The rest position from the record (rest.V is stored column by column: three cache lines).
+    v.x = s.motion->kind == WallMotionKind::phases ? wall_vertex_position(*s.motion, s.mesh, i, c.at)
+                                                   : wall_field_position(*s.motion, v.rest, c.at);
     v.stamp = c.epoch;
   }
   return v.x;
@@ -92,14 +95,17 @@ const Face& face(CurrentWallCache& cache, const VesselScene& s, int f) {
   const std::size_t slot = cache.faces_used++;
   key = (static_cast<std::uint64_t>(cache.epoch) << 32) | slot;
   Face& r = cache.faces[slot];
-  r.a = vertex(cache, s, s.mesh.F(f, 0));
-  r.b = vertex(cache, s, s.mesh.F(f, 1));
-  r.c = vertex(cache, s, s.mesh.F(f, 2));
+  const std::array<int, 3>& corners = s.motion->face_vertices[f];
+  r.a = vertex(cache, s, corners[0]);
+  r.b = vertex(cache, s, corners[1]);
+  r.c = vertex(cache, s, corners[2]);
   const Eigen::Vector3d n = (r.b - r.a).cross(r.c - r.a);
   const double len = n.norm();
   r.n = len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
-  const Eigen::Vector3d centre = r.centre();
-  r.radius = std::max({(r.a - centre).norm(), (r.b - centre).norm(), (r.c - centre).norm()});
+  r.centre = (r.a + r.b + r.c) / 3.0;
+  // One square root: sqrt is monotonic and correctly rounded, so this is the largest of the three norms.
+  r.radius = std::sqrt(std::max({(r.a - r.centre).squaredNorm(), (r.b - r.centre).squaredNorm(),
+                                 (r.c - r.centre).squaredNorm()}));
   return r;
 }
 
@@ -111,8 +117,9 @@ const Eigen::Vector3d& vertex_normal(CurrentWallCache& c, const VesselScene& s, 
   for (int k = m.vertex_face_begin[i]; k < m.vertex_face_begin[i + 1]; ++k) {
     const int f = m.vertex_face[k], corner = m.vertex_corner[k];
     const Face& fd = face(c, s, f);
-    const Eigen::Vector3d p0 = vertex(c, s, s.mesh.F(f, corner)), p1 = vertex(c, s, s.mesh.F(f, (corner + 1) % 3)),
-                          p2 = vertex(c, s, s.mesh.F(f, (corner + 2) % 3));
+    const std::array<int, 3>& corners = m.face_vertices[f];
+    const Eigen::Vector3d p0 = vertex(c, s, corners[corner]), p1 = vertex(c, s, corners[(corner + 1) % 3]),
+                          p2 = vertex(c, s, corners[(corner + 2) % 3]);
     const Eigen::Vector3d e1 = p1 - p0, e2 = p2 - p0;
     const double den = e1.norm() * e2.norm();
     const double angle = den > 0 ? std::acos(std::clamp(e1.dot(e2) / den, -1.0, 1.0)) : 0.0;
@@ -139,6 +146,7 @@ WallDistance wall_distance_among_at(const VesselScene& scene, double t, const Ei
   WallDistance best;
   best.signed_distance = std::numeric_limits<double>::infinity();
   double best_d2 = cutoff * cutoff;
+  double best_reach = std::sqrt(best_d2 * (1 + 1e-12));  // a current bounding sphere farther: skipped
   double best_cos = -1;
   Eigen::Vector3d best_diff = Eigen::Vector3d::Zero(), best_n = Eigen::Vector3d::Zero();
   int best_position = -1;
@@ -150,11 +158,12 @@ WallDistance wall_distance_among_at(const VesselScene& scene, double t, const Ei
     const int f = triangles[position];
     if (rest) {
       const Eigen::Vector4d& sphere = rest_spheres ? (*rest_spheres)[position] : scene.face_spheres[f];
-      if ((rest->X - sphere.head<3>()).norm() - sphere[3] > rest_limit) return;  // cannot be nearer than the best
+      const double rest_sphere_reach = rest_limit + sphere[3];  // compared squared: no square root per triangle
+      if ((rest->X - sphere.head<3>()).squaredNorm() > rest_sphere_reach * rest_sphere_reach) return;  // cannot be nearer than the best
     }
     const Face& fd = face(cache, scene, f);
-    const double dc = (p - fd.centre()).norm() - fd.radius;
-    if (dc > 0 && dc * dc > best_d2 * (1 + 1e-12)) return;
+    const double sphere_reach = fd.radius + best_reach;
+    if ((p - fd.centre).squaredNorm() > sphere_reach * sphere_reach) return;
     int region = 0;
     const Eigen::Vector3d c = closest_point_on_triangle(p, fd.a, fd.b, fd.c, region);
     const Eigen::Vector3d diff = p - c;
@@ -175,19 +184,41 @@ WallDistance wall_distance_among_at(const VesselScene& scene, double t, const Ei
       best.closest = c;
       best_diff = diff;
       best_n = fd.n;
+      best_reach = std::sqrt(best_d2 * (1 + 1e-12));
       if (rest) rest_limit = reach_of(best_d2);
     }
   };
   const int first = hint ? *hint : -1;
   if (first >= 0 && first < static_cast<int>(triangles.size())) consider(first);
-  for (std::size_t i = 0; i < triangles.size(); ++i) {
-    if (lower_bounds && rest) {
+  if (lower_bounds && rest) {
+    // Rest frame, in two passes with the same answer as one: first the triangles whose rest bounding
+    // sphere comes within the reach of the best so far (a sequential pass over the list), their records
+    // prefetched; then those in list order as the single pass would take them (the reach only shrinks,
+    // so every triangle the single pass would evaluate is among them). The current faces and vertices
+    // are scattered over the mesh: asked for together, their cache misses overlap.
+    thread_local std::vector<int> near;
+    near.clear();
+    for (std::size_t i = 0; i < triangles.size(); ++i) {
       if ((*lower_bounds)[i] - moved > rest_limit) break;  // sorted: nothing later is closer
-    } else if (lower_bounds) {
-      const double lb = (*lower_bounds)[i] - moved;
-      if (lb > 0 && lb * lb > best_d2 * (1 + 1e-9) + 1e-18) break;  // sorted: nothing later is closer
+      const Eigen::Vector4d& sphere = rest_spheres ? (*rest_spheres)[i] : scene.face_spheres[triangles[i]];
+      const double reach = rest_limit + sphere[3];
+      if (static_cast<int>(i) == first || (rest->X - sphere.head<3>()).squaredNorm() > reach * reach) continue;
+      near.push_back(static_cast<int>(i));
+      __builtin_prefetch(&cache.face_key[triangles[i]]);
+      __builtin_prefetch(&scene.motion->face_vertices[triangles[i]]);
     }
-    if (static_cast<int>(i) != first) consider(static_cast<int>(i));
+    for (const int i : near) {
+      if ((*lower_bounds)[i] - moved > rest_limit) break;
+      consider(i);
+    }
+  } else {
+    for (std::size_t i = 0; i < triangles.size(); ++i) {
+      if (lower_bounds) {
+        const double lb = (*lower_bounds)[i] - moved;
+        if (lb > 0 && lb * lb > best_d2 * (1 + 1e-9) + 1e-18) break;  // sorted: nothing later is closer
+      }
+      if (static_cast<int>(i) != first) consider(static_cast<int>(i));
+    }
   }
   if (hint) *hint = best_position;
   if (best.triangle < 0) return best;
@@ -195,16 +226,17 @@ WallDistance wall_distance_among_at(const VesselScene& scene, double t, const Ei
   const Eigen::Vector3d n = best_n;
   const double dist = std::sqrt(best_d2);
   best.signed_distance = best_diff.dot(n) <= 0 ? dist : -dist;
-  const Eigen::Vector3d a = vertex(cache, scene, scene.mesh.F(f, 0)), b = vertex(cache, scene, scene.mesh.F(f, 1)),
-                        c = vertex(cache, scene, scene.mesh.F(f, 2));
+  const std::array<int, 3>& corners = scene.motion->face_vertices[f];
+  const Eigen::Vector3d a = vertex(cache, scene, corners[0]), b = vertex(cache, scene, corners[1]),
+                        c = vertex(cache, scene, corners[2]);
   const Eigen::Vector3d v0 = b - a, v1 = c - a, v2 = best.closest - a;
   const double d00 = v0.dot(v0), d01 = v0.dot(v1), d11 = v1.dot(v1), d20 = v2.dot(v0), d21 = v2.dot(v1);
   const double den = d00 * d11 - d01 * d01;
   Eigen::Vector3d smooth = n;
   if (den > 0) {
     const double wb = (d11 * d20 - d01 * d21) / den, wc = (d00 * d21 - d01 * d20) / den;
-    smooth = (1 - wb - wc) * vertex_normal(cache, scene, scene.mesh.F(f, 0)) +
-             wb * vertex_normal(cache, scene, scene.mesh.F(f, 1)) + wc * vertex_normal(cache, scene, scene.mesh.F(f, 2));
+    smooth = (1 - wb - wc) * vertex_normal(cache, scene, corners[0]) + wb * vertex_normal(cache, scene, corners[1]) +
+             wc * vertex_normal(cache, scene, corners[2]);
     if (smooth.norm() > 1e-9 && smooth.dot(n) > 0) smooth.normalize();
     else smooth = n;
   }
@@ -230,7 +262,7 @@ void triangles_near_at(const VesselScene& scene, double t, const Eigen::Vector3d
     const Eigen::Vector4d& rest = scene.face_spheres[f];
     if ((centre - rest.head<3>()).norm() - rest[3] > rest_radius) continue;  // cannot come near p
     const Face& fd = face(cache, scene, f);
-    const double d = (p - fd.centre()).norm() - fd.radius;
+    const double d = (p - fd.centre).norm() - fd.radius;
     if (d > radius) continue;
     out[kept++] = f;
     if (sphere_distances) sphere_distances->push_back(d);
@@ -262,9 +294,9 @@ WallDistance wall_distance_at(const VesselScene& scene, double t, const Eigen::V
 Eigen::Vector3d wall_point_velocity(const VesselScene& scene, int triangle, const Eigen::Vector3d& closest, double t,
                                     double h) {
   CurrentWallCache& cache = cache_for(scene, t);
-  const Eigen::Vector3d a = vertex(cache, scene, scene.mesh.F(triangle, 0)),
-                        b = vertex(cache, scene, scene.mesh.F(triangle, 1)),
-                        c = vertex(cache, scene, scene.mesh.F(triangle, 2));
+  const std::array<int, 3>& corners = scene.motion->face_vertices[triangle];
+  const Eigen::Vector3d a = vertex(cache, scene, corners[0]), b = vertex(cache, scene, corners[1]),
+                        c = vertex(cache, scene, corners[2]);
   const Eigen::Vector3d v0 = b - a, v1 = c - a, v2 = closest - a;
   const double d00 = v0.dot(v0), d01 = v0.dot(v1), d11 = v1.dot(v1), d20 = v2.dot(v0), d21 = v2.dot(v1);
   const double den = d00 * d11 - d01 * d01;
@@ -274,9 +306,8 @@ Eigen::Vector3d wall_point_velocity(const VesselScene& scene, int triangle, cons
     wc = (d00 * d21 - d01 * d20) / den;
   }
   CurrentWallCache& end = cache_for(scene, t + h);  // (another slot: `cache` stays valid)
-  const Eigen::Vector3d a1 = vertex(end, scene, scene.mesh.F(triangle, 0)),
-                        b1 = vertex(end, scene, scene.mesh.F(triangle, 1)),
-                        c1 = vertex(end, scene, scene.mesh.F(triangle, 2));
+  const Eigen::Vector3d a1 = vertex(end, scene, corners[0]), b1 = vertex(end, scene, corners[1]),
+                        c1 = vertex(end, scene, corners[2]);
   return ((1 - wb - wc) * (a1 - a) + wb * (b1 - b) + wc * (c1 - c)) / h;
 }
 

@@ -19,6 +19,7 @@
 //   s = (1 + cos(pi (phase - S) / (1 - S))) / 2         for phase >= S  (diastole: 1 -> 0)
 // C1 at both joins (zero rate at end-diastole and end-systole); s = 1 is end-systole.
 #include <Eigen/Core>
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -77,6 +78,7 @@ struct WallMotion {
   int vertices = 0;
   std::vector<int> vertex_face_begin;  // CSR: faces around each vertex, ascending, with the corner
   std::vector<int> vertex_face, vertex_corner;
+  std::vector<std::array<int, 3>> face_vertices;  // rest.F row by row: a face's corners in one cache line
   double max_edge_mm = 0;              // longest rest edge
   long id = 0;                         // unique per constructed motion (keys the per-thread vertex cache)
 };

@@ -16,6 +16,7 @@ namespace gw {
 namespace {
 
 const double kRounding = 1e-8;  // mm: floating-point slack of X + D against the exact bounds
+const double kNewtonTolerance = 1e-6;  // mm: wall_rest_point's pre-image residual (enters the bounds)
 
 Eigen::Vector3d rigid_displacement(const WallMotion& m, double t) {
   return m.velocity * t + m.amplitude * std::sin(2.0 * M_PI * cardiac_phase(m, t));
@@ -107,7 +108,11 @@ bool wall_rest_point(const WallMotion& m, const Eigen::Vector3d& p, const WallTi
   Eigen::Vector3d X = guess ? *guess : Eigen::Vector3d(p - (wall_field_position(m, p, at) - p));
   Eigen::Vector3d r = wall_field_position(m, X, at) - p;
   Eigen::Vector3d radial;
-  for (int it = 0; it < 8 && r.norm() > 1e-11 * (1.0 + p.norm()); ++it) {
+  // Stopped at a nanometre: the residual e is added to the bounds below (slack), next to the map's own
+  // K d^2 / 2 (micrometres for the coronary field), so iterating on to rounding changes no answer and
+  // would cost a second Jacobian and field evaluation in most queries.
+  const double tolerance = std::max(kNewtonTolerance, 1e-11 * (1.0 + p.norm()));
+  for (int it = 0; it < 8 && r.norm() > tolerance; ++it) {
     X -= cardiac_jacobian(m, X, s, radial).partialPivLu().solve(r);
     r = wall_field_position(m, X, at) - p;
   }

@@ -15,6 +15,7 @@
 #include "engine/task/observation.hpp"
 #include "engine/task/reward.hpp"
 #include "engine/wire/wire_params.hpp"
+#include "tests/runner/aim_controllers.hpp"
 
 namespace fs = std::filesystem;
 
@@ -35,11 +36,6 @@ gw::NavigationTask t1_task(bool push_pull, int recovery_attempts) {
   return gw::make_navigation_task(c, gw::default_wire_params(), {nav.anatomy});
 }
 
-// The scripted rule's rotation turned towards the wrong branch (omega -> +1) or away from it.
-double aim(const gw::Observation& obs, bool at_wrong) {
-  return at_wrong ? (obs[gw::obs_index::kOmega] < 0.95 ? 1.0 : 0.0) : (obs[gw::obs_index::kOmega] > -0.95 ? 1.0 : 0.0);
-}
-
 }  // namespace
 
 TEST_CASE("push/pull: insertion +1 is the paper's episode bit for bit", "[runner][push_pull]") {
@@ -48,7 +44,7 @@ TEST_CASE("push/pull: insertion +1 is the paper's episode bit for bit", "[runner
     gw::EpisodeState a = gw::reset_episode(paper, 0, 1, 7), b = gw::reset_episode(push_pull, 0, 1, 7);
     int steps = 0;
     for (;;) {
-      const double rotation = aim(a.obs, at_wrong);
+      const double rotation = gwtest::aim_rotation(a.obs, at_wrong);
       const gw::StepOutcome oa = gw::step_episode(paper, a, rotation);
       const gw::StepOutcome ob = gw::step_episode(push_pull, b, gw::Action{rotation, 1.0});
       ++steps;
@@ -126,7 +122,7 @@ TEST_CASE("push/pull: a stall is wire pushed in without progress", "[runner][pus
   gw::StepOutcome out;
   int steps = 0;
   do {
-    out = gw::step_episode(task, s, gw::Action{aim(s.obs, true), 1.0 / 3.0});
+    out = gw::step_episode(task, s, gw::Action{gwtest::aim_rotation(s.obs, true), 1.0 / 3.0});
     ++steps;
   } while (!s.done && steps < 5000);
   REQUIRE(s.done);
@@ -143,7 +139,7 @@ TEST_CASE("push/pull with recovery: the actor pulls out of a wrong child itself,
   gw::EpisodeState s = gw::reset_episode(task, 0, 1, 5);
   gw::StepOutcome out;
   // 1. Into the wrong child: the strict episode ends there, the procedure goes on.
-  do out = gw::step_episode(task, s, gw::Action{aim(s.obs, true), 1.0});
+  do out = gw::step_episode(task, s, gw::Action{gwtest::aim_rotation(s.obs, true), 1.0});
   while (!out.info.strict_end && !s.done);
   REQUIRE(out.info.strict_end);
   REQUIRE(out.info.wrong_branch);
@@ -167,7 +163,7 @@ TEST_CASE("push/pull with recovery: the actor pulls out of a wrong child itself,
   CHECK(pulled >= 1);  // the test says "in" from wrong_branch_depth_mm into the child: a pull of 0.4 mm can end it
   for (int k = 0; k < 10; ++k) out = gw::step_episode(task, s, gw::Action{0.0, -1.0});
   // 3. In again: the second entry is past K = 1 retries and ends the procedure as a failure.
-  do out = gw::step_episode(task, s, gw::Action{aim(s.obs, true), 1.0});
+  do out = gw::step_episode(task, s, gw::Action{gwtest::aim_rotation(s.obs, true), 1.0});
   while (!s.done);
   CHECK(out.terminated);
   CHECK(out.info.wrong_branch);

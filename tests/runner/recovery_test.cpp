@@ -13,6 +13,7 @@
 #include "engine/task/navigation_task.hpp"
 #include "engine/task/observation.hpp"
 #include "engine/wire/wire_params.hpp"
+#include "tests/runner/aim_controllers.hpp"
 
 namespace {
 
@@ -26,7 +27,7 @@ gw::NavigationTask t1_task(int recovery_attempts) {
   return gw::make_navigation_task(c, gw::default_wire_params(), {nav.anatomy});
 }
 
-// Aims the tip at the wrong branch (as runner_test's AimAtWrongBranch) until it sees lambda jump up, which
+// Aims the tip at the wrong branch (as gwtest::AimAtWrongBranch) until it sees lambda jump up, which
 // only a pull-back does (lambda_0 is measured afresh behind the bifurcation); from then on the scripted rule.
 class WrongThenRight : public gw::Controller {
  public:
@@ -36,23 +37,13 @@ class WrongThenRight : public gw::Controller {
     const double lambda = obs[gw::obs_index::kLambda];
     right_ = right_ || lambda > last_lambda_ + 0.2;
     last_lambda_ = lambda;
-    if (right_) return {obs[gw::obs_index::kOmega] > -0.95 ? 1.0 : 0.0, 1.0};
-    return {obs[gw::obs_index::kOmega] < 0.95 ? 1.0 : 0.0, 1.0};
+    return {gwtest::aim_rotation(obs, !right_), 1.0};
   }
 
  private:
   std::string name_ = "wrong-then-right";
   double last_lambda_ = 10;
   bool right_ = false;
-};
-
-class AimAtWrongBranch : public gw::Controller {
- public:
-  const std::string& name() const override { return name_; }
-  gw::Action act(const gw::Observation& obs) override { return {obs[gw::obs_index::kOmega] < 0.95 ? 1.0 : 0.0, 1.0}; }
-
- private:
-  std::string name_ = "aim-at-wrong";
 };
 
 // The frames both traces have up to `last` are the same bits (time, tip, action, observation, force).
@@ -118,7 +109,7 @@ TEST_CASE("recovery: a wrong branch is pulled back from and the retry reaches th
 
 TEST_CASE("recovery: at most K attempts, then the loss stands, and 0 attempts is the strict episode", "[runner][recovery]") {
   const gw::NavigationTask strict = t1_task(0), recovering = t1_task(2);
-  AimAtWrongBranch c0, c2;
+  gwtest::AimAtWrongBranch c0, c2;
   const gw::EpisodeTrace a = gw::run_episode(strict, 0, 1, 3, c0);
   const gw::EpisodeTrace b = gw::run_episode(recovering, 0, 1, 3, c2);
   REQUIRE(a.outcome == "wrong_branch");

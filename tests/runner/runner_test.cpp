@@ -22,6 +22,7 @@
 #include "engine/task/navigation_task.hpp"
 #include "engine/task/observation.hpp"
 #include "engine/wire/wire_params.hpp"
+#include "tests/runner/aim_controllers.hpp"
 
 namespace fs = std::filesystem;
 
@@ -222,23 +223,10 @@ TEST_CASE("run_batch: threads give the same episodes as one thread, and the summ
   CHECK(summary["results"][2]["steps"] == 25);
 }
 
-namespace {
-// Turns the tip's bend towards the wrong branch (omega -> +1) and holds it there: a controller that
-// aims wrong on purpose, so t1's Y is lost with the tip aimed at the wrong branch.
-class AimAtWrongBranch : public gw::Controller {
- public:
-  const std::string& name() const override { return name_; }
-  gw::Action act(const gw::Observation& obs) override { return {obs[gw::obs_index::kOmega] < 0.95 ? 1.0 : 0.0, 1.0}; }
-
- private:
-  std::string name_ = "aim-at-wrong";
-};
-}  // namespace
-
 TEST_CASE("a wrong branch records omega when the tip reached the lost bifurcation", "[runner]") {
   const ShortT1 t1(0);  // automatic step limit: episodes end at a branch
   const std::vector<gw::EpisodeRequest> requests = {{0, 1, 3}, {0, 2, 4}};
-  const auto wrong = gw::run_batch(t1.task, requests, [] { return std::make_unique<AimAtWrongBranch>(); }, 1, {});
+  const auto wrong = gw::run_batch(t1.task, requests, [] { return std::make_unique<gwtest::AimAtWrongBranch>(); }, 1, {});
   const auto right = gw::run_batch(t1.task, requests, [] { return gw::make_scripted_omega_controller(); }, 1, {});
   for (std::size_t k = 0; k < requests.size(); ++k) {
     REQUIRE(wrong[k].outcome == "wrong_branch");

@@ -158,8 +158,9 @@ WallDistance wall_distance_among_at(const VesselScene& scene, double t, const Ei
     const int f = triangles[position];
     if (rest) {
       const Eigen::Vector4d& sphere = rest_spheres ? (*rest_spheres)[position] : scene.face_spheres[f];
-      const double rest_sphere_reach = rest_limit + sphere[3];  // compared squared: no square root per triangle
-      if ((rest->X - sphere.head<3>()).squaredNorm() > rest_sphere_reach * rest_sphere_reach) return;  // cannot be nearer than the best
+      // Cannot be nearer than the best (compared squared: no square root per triangle).
+      const double rest_sphere_reach = rest_limit + sphere[3];
+      if ((rest->X - sphere.head<3>()).squaredNorm() > rest_sphere_reach * rest_sphere_reach) return;
     }
     const Face& fd = face(cache, scene, f);
     const double sphere_reach = fd.radius + best_reach;

@@ -95,6 +95,10 @@ int main(int argc, char** argv) {
       gw::CardiacMotion cm;
       if (!motion_path.empty()) {
         cm = gw::load_cardiac_motion(motion_path);
+        if (cm.hold_inlet) {  // the file's default: held at the inlet, as navigate holds it
+          cm.has_fixed_point = true;
+          cm.fixed_point = inlet;
+        }
       } else {
         cm.axis_origin = Eigen::Vector3d::Zero();
         cm.axis_direction = Eigen::Vector3d(0, 0, -1);

@@ -21,13 +21,14 @@ bool heart_beats(const HeartSettings& h);
 
 struct HeartMotion {
   CardiacMotion motion;
-  std::string source;  // the file it came from, and how ("FILE", "STEM.spec.json deformation, fixed at the inlet")
+  std::string source;  // the file it came from, and how ("FILE, held at the inlet", "STEM.spec.json deformation, fixed at the inlet")
 };
 
 // Inputs: the anatomy's mesh path, its inlet (the insertion point), the settings. Output: the motion:
 //   settings.motion_path when given; else STEM.motion.json beside the mesh; else the "deformation" block of
 //   STEM.spec.json beside it (the anatomy generator's field, which must be at phase 0, i.e. the mesh is the
-//   rest shape) played over the cycle and held still at the inlet (the guide catheter's frame).
+//   rest shape) played over the cycle and held still at the inlet (the guide catheter's frame). A motion file
+//   that does not name its held point ("fixed_point") is held at `inlet` too (CardiacMotion::hold_inlet).
 // The rate is settings.heart_rate_bpm when positive, else the file's. Throws std::runtime_error naming the
 // mesh when no motion is found, a spec's field is not at phase 0, or a file is unreadable.
 HeartMotion resolve_heart_motion(const std::string& mesh_path, const Eigen::Vector3d& inlet, const HeartSettings& h);

@@ -25,6 +25,11 @@ HeartMotion resolve_heart_motion(const std::string& mesh_path, const Eigen::Vect
     throw std::runtime_error(mesh_path + ": no cardiac motion for this mesh (no " + beside.filename().string() +
                              " or " + spec.filename().string() + " with a \"deformation\" beside it): give --motion FILE");
   }
+  if (out.motion.hold_inlet) {  // a motion file's default: the guide catheter's frame
+    out.motion.has_fixed_point = true;
+    out.motion.fixed_point = inlet;
+    out.source += ", held at the inlet";
+  }
   if (h.heart_rate_bpm > 0) out.motion.heart_rate_bpm = h.heart_rate_bpm;
   return out;
 }

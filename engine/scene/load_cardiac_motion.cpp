@@ -1,5 +1,6 @@
 // load_cardiac_motion (engine/scene/wall_motion.hpp).
-// Input: the path of a motion JSON file. Output: its CardiacMotion (missing keys keep their defaults).
+// Input: the path of a motion JSON file. Output: its CardiacMotion (missing keys keep their defaults;
+// "fixed_point" missing or "inlet": hold_inlet).
 // Throws std::runtime_error "<file>: <problem>".
 #include <filesystem>
 #include <fstream>
@@ -52,9 +53,20 @@ CardiacMotion load_cardiac_motion(const std::string& path) {
   number("twist_deg_per_cm", m.twist_deg_per_cm);
   number("rotation_deg", m.rotation_deg);
   vec3("translation_mm", m.translation_mm);
-  if (j.contains("fixed_point")) {
+  // The held point: a point, the anatomy's inlet (the default: a guide catheter engaged in the ostium
+  // moves with it, so the wire's entry does not move against the vessel), or none (the introducer stays
+  // in the room while the vessel moves away from it).
+  // Phase surfaces are taken as they are (no field to hold a point of): the inlet moves with them.
+  const nlohmann::json held =
+      j.contains("fixed_point") ? j["fixed_point"] : nlohmann::json(j.contains("phase_surfaces") ? "none" : "inlet");
+  if (held.is_string() && held == "inlet") {
+    m.hold_inlet = true;
+  } else if (held.is_string() && held == "none") {
+  } else if (held.is_array()) {
     vec3("fixed_point", m.fixed_point);
     m.has_fixed_point = true;
+  } else {
+    throw std::runtime_error(path + ": \"fixed_point\" must be an array of three numbers, \"inlet\" or \"none\"");
   }
   if (j.contains("phase_surfaces")) {
     const auto& list = j["phase_surfaces"];

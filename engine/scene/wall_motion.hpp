@@ -49,6 +49,10 @@ struct CardiacMotion {
   // tip engaged in the ostium, so the simulation runs in the catheter's frame and the introducer stays put.
   bool has_fixed_point = false;
   Eigen::Vector3d fixed_point = Eigen::Vector3d::Zero();
+  // Hold the anatomy's inlet still (a motion file's default, "fixed_point": "inlet"): set by whoever knows
+  // the inlet (resolve_heart_motion), which then fills has_fixed_point and fixed_point. cardiac_wall_motion
+  // refuses a motion that still asks for it.
+  bool hold_inlet = false;
   // 4D CT instead of the parametric map: N >= 2 surface files (paths), the wall at phases j / N, with the
   // rest mesh's vertex count, order and triangles (heart_wall_motion). Only the timing keys go with them.
   std::vector<std::string> phase_surfaces;
@@ -99,8 +103,8 @@ WallMotion phase_wall_motion(const TriangleMesh& rest, const std::vector<Eigen::
 
 // A motion JSON file: {"heart_rate_bpm": 72, "systole_fraction": 0.33, "axis_origin": [x, y, z],
 // "axis_direction": [..], "contraction_mm": 2, "shortening_mm": 1, "twist_deg_per_cm": 3,
-// "rotation_deg": 4, "translation_mm": [..], "fixed_point": [..], ...} (the CardiacMotion fields; missing ones keep their
-// defaults), or 4D CT: {"heart_rate_bpm": 72, "phase_offset": 0, "phase_surfaces": ["ed.obj", "p1.obj", ...]}
+// "rotation_deg": 4, "translation_mm": [..], "fixed_point": [..] | "inlet" | "none", ...} (the CardiacMotion fields;
+// missing ones keep their defaults; "fixed_point" missing = "inlet": the anatomy's inlet held still, hold_inlet), or 4D CT: {"heart_rate_bpm": 72, "phase_offset": 0, "phase_surfaces": ["ed.obj", "p1.obj", ...]}
 // (paths relative to the file; no parametric key beside them). Throws std::runtime_error "<file>: <problem>"
 // for an unreadable file, an unknown key or a bad value.
 CardiacMotion load_cardiac_motion(const std::string& path);

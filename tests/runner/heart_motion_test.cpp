@@ -164,3 +164,44 @@ TEST_CASE("heart motion: 4D CT phase surfaces from a motion file move the wall t
   std::ofstream(dir / "one.json") << R"({"phase_surfaces": ["p0.obj"]})";
   CHECK_THROWS_WITH(gw::load_cardiac_motion((dir / "one.json").string()), Catch::Contains("at least two"));
 }
+
+TEST_CASE("heart motion: a motion file holds the inlet still unless it says otherwise", "[runner][heart]") {
+  // A translation only (5 mm at end-systole): held at the inlet (the file's default, the guide catheter's
+  // frame) it moves nothing against the introducer; with "fixed_point": "none" the whole wall, inlet
+  // included, moves away from it by the translation.
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "gw_held_inlet_test";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "held.json") << R"({"heart_rate_bpm": 60, "translation_mm": [3, 4, 0]})";
+  std::ofstream(dir / "free.json") << R"({"heart_rate_bpm": 60, "translation_mm": [3, 4, 0], "fixed_point": "none"})";
+  std::ofstream(dir / "bad.json") << R"({"translation_mm": [3, 4, 0], "fixed_point": "ostium"})";
+  const double systole = 1.0 / 3.0;  // 60 bpm: end-systole at a third of the 1 s cycle
+  gw::HeartSettings h;
+
+  gw::Anatomy held = coronary();
+  h.motion_path = (dir / "held.json").string();
+  CHECK(gw::load_cardiac_motion(h.motion_path).hold_inlet);
+  const gw::HeartMotion m = gw::resolve_heart_motion(held.mesh_path, held.graph.inlet.position, h);
+  REQUIRE(m.motion.has_fixed_point);
+  CHECK(m.motion.fixed_point == held.graph.inlet.position);
+  CHECK(m.source.find("held at the inlet") != std::string::npos);
+  gw::apply_heart_settings(held, h);
+  REQUIRE(held.scene->motion);
+  for (const int v : {0, 1000, static_cast<int>(held.scene->mesh.V.rows()) - 1})
+    CHECK((gw::current_wall_vertex(*held.scene, v, systole) - held.scene->mesh.V.row(v).transpose()).norm() < 1e-9);
+
+  gw::Anatomy free = coronary();
+  h.motion_path = (dir / "free.json").string();
+  CHECK_FALSE(gw::load_cardiac_motion(h.motion_path).hold_inlet);
+  gw::apply_heart_settings(free, h);
+  REQUIRE(free.scene->motion);
+  for (const int v : {0, 1000})
+    CHECK((gw::current_wall_vertex(*free.scene, v, systole) - free.scene->mesh.V.row(v).transpose() -
+           Eigen::Vector3d(3, 4, 0)).norm() < 1e-9);
+
+  CHECK_THROWS_WITH(gw::load_cardiac_motion((dir / "bad.json").string()),
+                    Catch::Contains("bad.json") && Catch::Contains("fixed_point") && Catch::Contains("inlet"));
+  // The engine refuses a motion that asks to hold an inlet nobody gave it.
+  gw::CardiacMotion asks;
+  asks.hold_inlet = true;
+  CHECK_THROWS_WITH(gw::heart_wall_motion(held.scene->mesh, asks), Catch::Contains("inlet"));
+}

@@ -21,7 +21,8 @@ bool heart_beats(const HeartSettings& h);
 
 struct HeartMotion {
   CardiacMotion motion;
-  std::string source;  // the file it came from, and how ("FILE, held at the inlet", "STEM.spec.json deformation, fixed at the inlet")
+  std::string source;  // the file it came from, and how ("FILE, held at the inlet", "STEM.spec.json deformation,
+                       // fixed at the inlet")
 };
 
 // Inputs: the anatomy's mesh path, its inlet (the insertion point), the settings. Output: the motion:

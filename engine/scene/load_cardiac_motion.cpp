@@ -56,9 +56,7 @@ CardiacMotion load_cardiac_motion(const std::string& path) {
   // The held point: a point, the anatomy's inlet (the default: a guide catheter engaged in the ostium
   // moves with it, so the wire's entry does not move against the vessel), or none (the introducer stays
   // in the room while the vessel moves away from it).
-  // Phase surfaces are taken as they are (no field to hold a point of): the inlet moves with them.
-  const nlohmann::json held =
-      j.contains("fixed_point") ? j["fixed_point"] : nlohmann::json(j.contains("phase_surfaces") ? "none" : "inlet");
+  const nlohmann::json held = j.contains("fixed_point") ? j["fixed_point"] : nlohmann::json("inlet");
   if (held.is_string() && held == "inlet") {
     m.hold_inlet = true;
   } else if (held.is_string() && held == "none") {
@@ -74,9 +72,10 @@ CardiacMotion load_cardiac_motion(const std::string& path) {
       throw std::runtime_error(path + ": \"phase_surfaces\" must be an array of at least two surface files");
     for (const auto& item : j.items())
       if (item.key() != "phase_surfaces" && item.key() != "heart_rate_bpm" && item.key() != "phase_offset" &&
-          item.key() != "comment")
+          item.key() != "comment" && item.key() != "fixed_point")
         throw std::runtime_error(path + ": \"" + item.key() + "\" is a parametric motion key: with \"phase_surfaces\" "
-                                 "the wall follows the surfaces (keep only heart_rate_bpm and phase_offset)");
+                                 "the wall follows the surfaces (keep only heart_rate_bpm, phase_offset, "
+                                 "fixed_point)");
     const std::filesystem::path folder = std::filesystem::path(path).parent_path();
     for (const auto& f : list) {
       if (!f.is_string()) throw std::runtime_error(path + ": \"phase_surfaces\" must hold file names");

@@ -45,8 +45,9 @@ struct CardiacMotion {
   double twist_deg_per_cm = 0;     // torsion: rotation about a growing with h
   double rotation_deg = 0;         // rotation about the axis, uniform
   Eigen::Vector3d translation_mm = Eigen::Vector3d::Zero();
-  // Optional point held still (the displacement there subtracted everywhere): e.g. the guide catheter's
-  // tip engaged in the ostium, so the simulation runs in the catheter's frame and the introducer stays put.
+  // Optional point held still (the displacement there subtracted everywhere; phase surfaces: each phase
+  // moved back by its nearest vertices' mean displacement): e.g. the guide catheter's tip engaged in the
+  // ostium, so the simulation runs in the catheter's frame and the introducer stays put.
   bool has_fixed_point = false;
   Eigen::Vector3d fixed_point = Eigen::Vector3d::Zero();
   // Hold the anatomy's inlet still (a motion file's default, "fixed_point": "inlet"): set by whoever knows
@@ -103,10 +104,11 @@ WallMotion phase_wall_motion(const TriangleMesh& rest, const std::vector<Eigen::
 
 // A motion JSON file: {"heart_rate_bpm": 72, "systole_fraction": 0.33, "axis_origin": [x, y, z],
 // "axis_direction": [..], "contraction_mm": 2, "shortening_mm": 1, "twist_deg_per_cm": 3,
-// "rotation_deg": 4, "translation_mm": [..], "fixed_point": [..] | "inlet" | "none", ...} (the CardiacMotion fields;
-// missing ones keep their defaults; "fixed_point" missing = "inlet": the anatomy's inlet held still, hold_inlet), or 4D CT: {"heart_rate_bpm": 72, "phase_offset": 0, "phase_surfaces": ["ed.obj", "p1.obj", ...]}
-// (paths relative to the file; no parametric key beside them). Throws std::runtime_error "<file>: <problem>"
-// for an unreadable file, an unknown key or a bad value.
+// "rotation_deg": 4, "translation_mm": [..], "fixed_point": [..] | "inlet" | "none", ...} (the
+// CardiacMotion fields; missing ones keep their defaults; "fixed_point" missing = "inlet": the anatomy's
+// inlet held still, hold_inlet), or 4D CT: {"heart_rate_bpm": 72, "phase_offset": 0, "phase_surfaces":
+// ["ed.obj", "p1.obj", ...]} (paths relative to the file; no parametric key beside them but "fixed_point").
+// Throws std::runtime_error "<file>: <problem>" for an unreadable file, an unknown key or a bad value.
 CardiacMotion load_cardiac_motion(const std::string& path);
 
 // The wall motion a CardiacMotion describes on `rest`: phase_wall_motion of its phase surfaces (each loaded

@@ -132,7 +132,8 @@ TEST_CASE("heart motion: 4D CT phase surfaces from a motion file move the wall t
   write_obj(dir / "p0.obj", rest, Eigen::Vector3d::Zero());
   write_obj(dir / "p1.obj", rest, Eigen::Vector3d(0.6, 0, 0));
   write_obj(dir / "p2.obj", rest, Eigen::Vector3d(0, 0.6, 0));
-  std::ofstream(dir / "motion.json") << R"({"heart_rate_bpm": 60, "phase_surfaces": ["p0.obj", "p1.obj", "p2.obj"]})";
+  std::ofstream(dir / "motion.json")
+      << R"({"heart_rate_bpm": 60, "phase_surfaces": ["p0.obj", "p1.obj", "p2.obj"], "fixed_point": "none"})";
   gw::HeartSettings h;
   h.motion_path = (dir / "motion.json").string();
   CHECK(gw::apply_heart_settings(a, h) == h.motion_path);
@@ -149,6 +150,15 @@ TEST_CASE("heart motion: 4D CT phase surfaces from a motion file move the wall t
   // The task follows the moving wall: its centerline at t is mapped through the surfaces (graph_motion.hpp).
   gw::NavigationTask task = gw::make_navigation_task({}, gw::default_wire_params(), {a});
   CHECK(task.anatomies.size() == 1);
+
+  // Held at the inlet (a motion file's default): these phases are translations, so nothing moves.
+  std::ofstream(dir / "held.json") << R"({"heart_rate_bpm": 60, "phase_surfaces": ["p0.obj", "p1.obj", "p2.obj"]})";
+  gw::Anatomy held = gw::load_anatomy("t1", stem + ".stl", stem + ".truth.json");
+  h.motion_path = (dir / "held.json").string();
+  CHECK(gw::apply_heart_settings(held, h) == h.motion_path + ", held at the inlet");
+  for (const int v : {0, 100, static_cast<int>(rest.V.rows()) - 1})
+    for (const double t : {1.0 / 3.0, 0.5, 2.0 / 3.0})
+      CHECK((gw::current_wall_vertex(*held.scene, v, t) - rest.V.row(v).transpose()).norm() < 1e-6);
 
   // A surface with other triangles, a motion file mixing phase surfaces with a parametric key: refused, named.
   gw::TriangleMesh fewer = rest;

@@ -4,7 +4,8 @@ results.json: the push/pull actor (act/2) with --recovery 3 on the coronary-like
 50k/results.json: the run continued (--resume) to its 50,000-step checkpoint; time_cost/results.json: the second
 run (a cost of time in the reward, started from the shipped rotation actor); scripted/results.json: the scripted rule with the
 recovery wrapper (--recovery 3) on the same episodes, re-run at this commit; ../recovery/: the shipped
-rotation-only SAC with the wrapper (same episodes, seeds 0-24).
+rotation-only SAC with the wrapper (same episodes, seeds 0-24); every_row/results.json: the time-cost actor
+(the one that ships) and the scripted rule with the wrapper on the table's other eight rows.
 Sign tests: exact two-sided binomial on the episodes where exactly one of the two succeeded, as the table's.
 """
 import json
@@ -15,7 +16,12 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 from stats import sign_test, wilson  # noqa: E402  (results/stats.py)
 
-ROWS = ["coronary-like", "deformed coronary"]
+COMPARED_ROWS = ["coronary-like", "deformed coronary"]
+# every_row/results.json: the shipped push/pull actor and the scripted rule with the wrapper on the table's
+# other eight rows (the first half of each row's episodes, as on the coronary rows).
+EVERY_ROW_PATH = os.path.join(HERE, "every_row", "results.json")
+OTHER_ROWS = [r["name"] for r in json.load(open(EVERY_ROW_PATH))["rows"]] if os.path.exists(EVERY_ROW_PATH) else []
+ROWS = OTHER_ROWS + COMPARED_ROWS
 
 
 def load(*parts):
@@ -40,8 +46,10 @@ def mean(values):
 
 runs = {"push/pull SAC (act/2)": (load("results.json"), "sac-policy"),
         "push/pull SAC (act/2), continued to 50k steps": (load("50k", "results.json"), "sac-policy"),
-        "push/pull SAC (act/2), time cost, from the rotation actor": (load("time_cost", "results.json"), "sac-policy"),
-        "scripted omega + wrapper": (load("scripted", "results.json"), "scripted-omega"),
+        "push/pull SAC (act/2), time cost, from the rotation actor": (load("time_cost", "results.json") |
+                                                                      load("every_row", "results.json"), "sac-policy"),
+        "scripted omega + wrapper": (load("scripted", "results.json") | load("every_row", "results.json"),
+                                     "scripted-omega"),
         "shipped SAC (act/1) + wrapper": (load("..", "recovery", "results.json") | load("..", "recovery", "deformed",
                                                                                         "results.json"), "sac-policy")}
 print("| row | controller | strict | with recovery (K = 3) | retries used (mean) | procedure time, s (mean) | "

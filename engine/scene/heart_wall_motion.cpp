@@ -3,7 +3,8 @@
 // (4D CT; each file loaded with load_mesh and matched to the rest mesh triangle for triangle; with a
 // fixed point, each phase moved back so that the point keeps its place) or the parametric map's.
 // Throws std::runtime_error naming a file that cannot be loaded or does not match, and
-// std::invalid_argument for a bad rate or phase (as cardiac_wall_motion does).
+// std::invalid_argument for a bad rate or phase (as cardiac_wall_motion does) or an inlet to hold that was
+// not given (hold_inlet without a fixed point).
 #include <algorithm>
 #include <stdexcept>
 #include <string>
@@ -36,10 +37,10 @@ void hold_point_still(const TriangleMesh& rest, const Eigen::Vector3d& point, st
 }  // namespace
 
 WallMotion heart_wall_motion(const TriangleMesh& rest, const CardiacMotion& params) {
-  if (params.phase_surfaces.empty()) return cardiac_wall_motion(rest, params);
   if (params.hold_inlet && !params.has_fixed_point)
     throw std::invalid_argument("wall motion: the motion holds the anatomy's inlet still (\"fixed_point\": \"inlet\", "
                                 "a motion file's default) but no inlet was given to hold");
+  if (params.phase_surfaces.empty()) return cardiac_wall_motion(rest, params);
   std::vector<Eigen::MatrixX3d> frames;
   for (const std::string& path : params.phase_surfaces) {
     const TriangleMesh phase = load_mesh(path);

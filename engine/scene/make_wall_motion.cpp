@@ -101,9 +101,6 @@ WallMotion cardiac_wall_motion(const TriangleMesh& rest, const CardiacMotion& p)
   m.twist_rad_per_mm = p.twist_deg_per_cm * M_PI / 180.0 / 10.0;
   m.rotation_rad = p.rotation_deg * M_PI / 180.0;
   m.translation = p.translation_mm;
-  if (p.hold_inlet && !p.has_fixed_point)
-    throw std::invalid_argument("wall motion: the motion holds the anatomy's inlet still (\"fixed_point\": \"inlet\", "
-                                "a motion file's default) but no inlet was given to hold");
   if (p.has_fixed_point && !p.fixed_point.allFinite())
     throw std::invalid_argument("wall motion: the fixed point must be finite");
   m.has_fixed_point = p.has_fixed_point;

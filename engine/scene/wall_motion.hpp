@@ -51,7 +51,7 @@ struct CardiacMotion {
   bool has_fixed_point = false;
   Eigen::Vector3d fixed_point = Eigen::Vector3d::Zero();
   // Hold the anatomy's inlet still (a motion file's default, "fixed_point": "inlet"): set by whoever knows
-  // the inlet (resolve_heart_motion), which then fills has_fixed_point and fixed_point. cardiac_wall_motion
+  // the inlet (resolve_heart_motion), which then fills has_fixed_point and fixed_point. heart_wall_motion
   // refuses a motion that still asks for it.
   bool hold_inlet = false;
   // 4D CT instead of the parametric map: N >= 2 surface files (paths), the wall at phases j / N, with the
@@ -114,7 +114,7 @@ CardiacMotion load_cardiac_motion(const std::string& path);
 // The wall motion a CardiacMotion describes on `rest`: phase_wall_motion of its phase surfaces (each loaded
 // with load_mesh, millimetres as written; refused, naming the file, unless its triangles are the rest
 // mesh's: same vertex count, order and faces), else cardiac_wall_motion. Throws std::runtime_error for a
-// file, std::invalid_argument for bad timing.
+// file, std::invalid_argument for bad timing or an inlet to hold that nobody gave (hold_inlet).
 WallMotion heart_wall_motion(const TriangleMesh& rest, const CardiacMotion& params);
 
 // Current position of rest vertex `vertex` at time t (computed as X + D, so exactly X when D = 0).

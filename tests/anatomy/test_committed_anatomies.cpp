@@ -27,7 +27,8 @@ TEST_CASE("the index lists the fixed anatomy layout and every file exists", "[an
       "test/coronary",             "test/coronary_deformed",        "validation/rca_validation",
       "validation/rca_validation_deformed", "validation/pl_validation", "validation/syn_validation",
       "junctions/coronary_trifurcation", "junctions/close_forks",
-      "junctions/coronary_trifurcation_outer", "junctions/close_forks_outer"};
+      "junctions/coronary_trifurcation_outer", "junctions/close_forks_outer",
+      "train_junctions/t5_trifurcation_planar", "train_junctions/t6_trifurcation_spread"};
   CHECK(names == expected);
 }
 

@@ -50,6 +50,10 @@ int main(int argc, char** argv) {
   app.add_flag("--push-pull", push_pull,
                "the actor also sets the insertion speed: action [rotation, insertion] (layout act/2) and observation "
                "obs/5 (obs/3 with the insertion and a wrong-branch flag; docs/recovery.md)");
+  bool since_progress = false;
+  app.add_flag("--since-progress", since_progress,
+               "with --push-pull: observation obs/7 (obs/5 and the time since the tip last progressed; "
+               "engine/task/observation.hpp)");
   app.add_option("--recovery", config.recovery_attempts,
                  "the procedure goes on after the strict end, at most K retries (docs/recovery.md; with --push-pull the "
                  "actor pulls back itself)")
@@ -103,6 +107,7 @@ int main(int argc, char** argv) {
       config.action = gw::ActionLayout::kRotationInsertion;
       config.observation.omega_side = config.observation.push_pull = true;
     }
+    config.observation.since_progress = since_progress;
     config.observation.name();  // refuses omega_side in the paper's plane, naming why
     const gw::WireParams wire = wire_json.empty() ? gw::default_wire_params() : gw::load_wire_params(wire_json);
     std::vector<gw::Anatomy> loaded = gw::load_indexed_anatomies(anatomies, index);

@@ -219,6 +219,7 @@ EpisodeState reset_episode(const NavigationTask& task, int anatomy, int target_i
   s.obs[obs_index::kAction] = 0.0;
   s.obs[obs_index::kInsertion] = 1.0;
   s.obs[obs_index::kWrongBranch] = 0.0;
+  s.obs[obs_index::kSinceProgress] = 0.0;
   s.best_progress_mm = s.progress_mm;
   s.inserted_at_best_mm = s.wire.inserted_length_mm;
   s.procedure_max_steps =
@@ -241,6 +242,11 @@ StepInfo episode_info(const NavigationTask& task, const EpisodeState& s) {
 }
 
 namespace {
+
+// The observation's since_progress entry: env steps since the tip last progressed over stuck_steps, at most 1.
+double since_progress(const TaskConfig& c, const EpisodeState& s) {
+  return std::min(1.0, static_cast<double>(s.steps - s.best_progress_step) / c.stuck_steps);
+}
 
 // Recovery: env steps that pull-back `attempt` (1-based) turns for: attempt * recovery_turn_rad at the
 // full rotation rate (at least one step).
@@ -440,6 +446,7 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, const Acti
       end_retraction(task, s);
     else
       s.in_control = false;
+    s.obs[obs_index::kSinceProgress] = since_progress(c, s);
     out.obs = s.obs;
     out.info = episode_info(task, s);
     fill_force(out.info);
@@ -455,6 +462,7 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, const Acti
     s.best_progress_step = s.steps;
     s.inserted_at_best_mm = s.wire.inserted_length_mm;
   }
+  s.obs[obs_index::kSinceProgress] = out.obs[obs_index::kSinceProgress] = since_progress(c, s);
   out.info = episode_info(task, s);
   fill_force(out.info);
   out.info.success = out.info.tip_to_target_mm <= c.success_radius_mm;

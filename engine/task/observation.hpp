@@ -35,6 +35,12 @@
 //                        wrong_branch_entered.hpp), else 0 (obs/5 only). Why: an actor that may pull back must
 //                        know it went the wrong way, as a clinician sees it on the fluoroscope; the paper's
 //                        entries barely change once the tip is in a wrong child
+//   [14]    since_progress  env steps since the tip last gained stuck_progress_mm along its course (the stall
+//                        test's clock, EpisodeState::best_progress_step) over stuck_steps, clipped to 1 (obs/7
+//                        only). Why: every other entry stands still when the wire does, so a deterministic actor
+//                        that outputs (0, 0) once sees the same observation and outputs (0, 0) again until the
+//                        procedure's limit (the obs/5 actor's standstill, results/push_pull); this one keeps
+//                        changing while nothing moves, and says how long the wire has made no headway
 // Why 3 products t_i . c_i and not the figure's 3x3 t_i . c_j: the text defines theta_i = t_i . c_i
 // explicitly and calls theta an N-vector; the 6 off-diagonal products add mostly c_i . c_j-like terms,
 // i.e. the local curvature of the centerline itself, which is the anatomy-specific information the
@@ -53,7 +59,7 @@ using Observation = std::array<double, kObservationSize>;
 
 namespace obs_index {
 inline constexpr int kTheta = 0, kThetaPrev = 3, kLambda = 6, kLambdaPrev = 7, kAction = 8, kOmega = 9, kSpeed = 10,
-                     kOmegaSide = 11, kInsertion = 12, kWrongBranch = 13;
+                     kOmegaSide = 11, kInsertion = 12, kWrongBranch = 13, kSinceProgress = 14;
 }
 
 // Names of the entries, e.g. "theta_t_1", "lambda_prev", "omega".

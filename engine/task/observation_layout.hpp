@@ -9,15 +9,18 @@
 //   guidewire-nav/obs/4  obs/3 with junctions combined (docs/junctions.md), 12 entries
 //   guidewire-nav/obs/5  obs/3 + the last insertion action and a wrong-branch flag, 14 entries: the push/pull
 //                        actor's (action layout act/2, action_layout.hpp; docs/recovery.md)
+//   guidewire-nav/obs/6  obs/3 with k-way junctions (docs/junctions.md), 12 entries
+//   guidewire-nav/obs/7  obs/5 + the time since the tip last progressed, 15 entries (act/2; docs/recovery.md)
 #include <string>
 
 namespace gw {
 
 inline constexpr int kThetaCount = 3;
 // Every entry is computed on every step; a layout hands its first size() entries to the actor.
-inline constexpr int kObservationSize = 2 * kThetaCount + 8;
+inline constexpr int kObservationSize = 2 * kThetaCount + 9;
 inline constexpr int kPaperObservationSize = 2 * kThetaCount + 5;  // obs/1, obs/2: without omega_side
-inline constexpr int kSideObservationSize = kPaperObservationSize + 1;  // obs/3, obs/4: with omega_side
+inline constexpr int kSideObservationSize = kPaperObservationSize + 1;  // obs/3, obs/4, obs/6: with omega_side
+inline constexpr int kPushPullObservationSize = kSideObservationSize + 2;  // obs/5: with the push/pull entries
 
 // The plane omega is measured in (observation.hpp, omega).
 enum class OmegaPlane {
@@ -52,11 +55,15 @@ struct ObservationLayout {
   JunctionModel junctions = JunctionModel::kSeparate;  // kCombined: obs/4, kKWay: obs/6
   bool push_pull = false;                          // obs/5: the insertion action and the wrong-branch flag
                                                    // as entries 13 and 14 (the act/2 actor's)
+  bool since_progress = false;                     // obs/7: obs/5 and the time since the tip last progressed
+                                                   // as entry 15
 
   // The layout's name; throws std::invalid_argument for a combination no layout has (omega_side in the
-  // paper's plane; combined junctions without omega_side; push/pull entries without obs/3), naming why.
+  // paper's plane; combined junctions without omega_side; push/pull entries without obs/3; since_progress
+  // without obs/5), naming why.
   const char* name() const;
-  // How many leading observation entries the actor takes: 11, 12 with omega_side, 14 with push_pull.
+  // How many leading observation entries the actor takes: 11, 12 with omega_side, 14 with push_pull, 15 with
+  // since_progress.
   int size() const;
   // The layout called `name`; throws std::invalid_argument naming the known layouts.
   static ObservationLayout parse(const std::string& name);

@@ -58,7 +58,7 @@ void check_task_config(const TaskConfig& c) {
   require(c.reward_wrong_branch >= 0 && std::isfinite(c.reward_wrong_branch), "reward_wrong_branch", ">= 0");
   require(c.reward_time_per_step >= 0 && std::isfinite(c.reward_time_per_step), "reward_time_per_step", ">= 0");
   require((c.action == ActionLayout::kRotationInsertion) == c.observation.push_pull, "observation",
-          "obs/5 (with the insertion and wrong-branch entries) exactly when the action is act/2 (push/pull)");
+          "obs/5 or obs/7 (with the insertion and wrong-branch entries) exactly when the action is act/2 (push/pull)");
   require(c.reward_force_per_N >= 0 && std::isfinite(c.reward_force_per_N), "reward_force_per_N", ">= 0 (0 = off)");
 }
 

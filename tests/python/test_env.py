@@ -287,6 +287,14 @@ def test_push_pull_is_layouts_obs5_act2_and_holds_the_wire_when_stopped(server_b
         assert side.spec_reply["action_layout"] == "guidewire-nav/act/1"
         assert pp.action_space.shape == (2,) and pp.observation_space.shape == (14,)
         assert pp.observation_names[-2:] == ["insertion", "wrong_branch"]
+        pp7 = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1},
+                           server_args=["--push-pull", "--since-progress"])
+        try:
+            assert pp7.spec_reply["obs_layout"] == "guidewire-nav/obs/7"
+            assert pp7.observation_names[-3:] == ["insertion", "wrong_branch", "since_progress"]
+            assert pp7.observation_space.shape == (15,)
+        finally:
+            pp7.close()
         assert pp.spec_reply["task"]["recovery_attempts"] == 2
         a, _ = side.reset(seed=6)
         b, _ = pp.reset(seed=6)

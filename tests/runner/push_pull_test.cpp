@@ -95,6 +95,39 @@ TEST_CASE("push/pull: stopping holds the wire and is no stall, pulling stops at 
   CHECK_THROWS_WITH(gw::step_episode(task, s, gw::Action{0.0, std::nan("")}), Catch::Contains("insertion"));
 }
 
+TEST_CASE("push/pull obs/7: since_progress counts the steps without headway while nothing else moves",
+          "[runner][push_pull]") {
+  // The obs/5 actor's standstill (results/push_pull): standing still, the obs/5 entries settle and repeat;
+  // obs/7's fifteenth rises by 1/stuck_steps a step to 1, and is 0 again once pushing gains progress.
+  gw::NavigationTask task = t1_task(true, 0);
+  task.config.observation.since_progress = true;
+  REQUIRE(std::string(task.config.observation.name()) == "guidewire-nav/obs/7");
+  gw::EpisodeState s = gw::reset_episode(task, 0, 1, 3);
+  CHECK(s.obs[gw::obs_index::kSinceProgress] == 0.0);
+  for (int k = 0; k < 20; ++k)
+    REQUIRE(gw::step_episode(task, s, gw::Action{0.0, 1.0}).obs[gw::obs_index::kSinceProgress] <=
+            5.0 / task.config.stuck_steps);
+  for (int k = 0; k < 5; ++k) gw::step_episode(task, s, gw::Action{0.0, 0.0});  // the wire settles
+  const gw::Observation settled = gw::step_episode(task, s, gw::Action{0.0, 0.0}).obs;
+  const double start = settled[gw::obs_index::kSinceProgress];
+  const Eigen::Vector3d tip = s.tip;
+  CHECK(start > 0.0);
+  for (int k = 1; k <= 2 * task.config.stuck_steps; ++k) {
+    const gw::StepOutcome out = gw::step_episode(task, s, gw::Action{0.0, 0.0});
+    REQUIRE((s.tip - tip).norm() < 0.5);  // the wire stands (it only settles)
+    REQUIRE(out.obs[gw::obs_index::kSinceProgress] ==
+            Approx(std::min(1.0, start + static_cast<double>(k) / task.config.stuck_steps)));
+  }
+  double since = 1.0;
+  for (int k = 0; k < 10 && since > 0.0; ++k)
+    since = gw::step_episode(task, s, gw::Action{0.0, 1.0}).obs[gw::obs_index::kSinceProgress];
+  CHECK(since == 0.0);
+  // The paper's task computes the entry too; its actors take only their layout's leading entries.
+  const gw::NavigationTask paper = t1_task(false, 0);
+  gw::EpisodeState p = gw::reset_episode(paper, 0, 1, 3);
+  CHECK(gw::step_episode(paper, p, 0.0).obs[gw::obs_index::kSinceProgress] <= 1.0 / paper.config.stuck_steps);
+}
+
 TEST_CASE("push/pull: a time cost comes off every step, stopped or moving, and nothing else changes",
           "[runner][push_pull]") {
   gw::NavigationTask plain = t1_task(true, 0), costly = t1_task(true, 0);
@@ -203,11 +236,17 @@ TEST_CASE("push/pull: an act/2 actor sets the task's layouts and its insertion r
   // Back to a rotation-only actor: its layouts again.
   gw::make_controller("scripted-omega", "")->adapt(config);  // baselines leave the config alone
   CHECK(config.action == gw::ActionLayout::kRotationInsertion);
+  CHECK_FALSE(config.observation.since_progress);
+  gw::TaskConfig config7;
+  gw::make_controller("policy", write("guidewire-nav/obs/7", 15, "guidewire-nav/act/2", 2))->adapt(config7);
+  CHECK(std::string(config7.observation.name()) == "guidewire-nav/obs/7");
+  CHECK_THROWS_WITH(gw::make_controller("policy", write("guidewire-nav/obs/7", 14, "guidewire-nav/act/2", 2)),
+                    Catch::Contains("takes 14") && Catch::Contains("has 15"));
   // Layouts that do not go together, or sizes that are not the layout's, are refused by name.
   CHECK_THROWS_WITH(gw::make_controller("policy", write("guidewire-nav/obs/5", 14, "guidewire-nav/act/1", 1)),
-                    Catch::Contains("obs/5 goes with act/2"));
+                    Catch::Contains("obs/5 and obs/7 go with act/2"));
   CHECK_THROWS_WITH(gw::make_controller("policy", write("guidewire-nav/obs/3", 12, "guidewire-nav/act/2", 2)),
-                    Catch::Contains("obs/5 goes with act/2"));
+                    Catch::Contains("obs/5 and obs/7 go with act/2"));
   CHECK_THROWS_WITH(gw::make_controller("policy", write("guidewire-nav/obs/5", 14, "guidewire-nav/act/2", 1)),
                     Catch::Contains("outputs 1") && Catch::Contains("has 2"));
   CHECK_THROWS_WITH(gw::make_controller("policy", write("guidewire-nav/obs/5", 14, "guidewire-nav/act/9", 2)),

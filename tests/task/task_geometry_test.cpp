@@ -223,7 +223,7 @@ TEST_CASE("reward sigmoid can be shifted and steepened", "[task]") {
 }
 
 TEST_CASE("observation layout is fixed and bounded", "[task]") {
-  CHECK(gw::kObservationSize == 14);
+  CHECK(gw::kObservationSize == 15);
   CHECK(std::string(gw::TaskConfig{}.observation.name()) == "guidewire-nav/obs/2");  // the task's default
   gw::ObservationLayout layout;
   layout.omega_plane = gw::OmegaPlane::kCorrectBranch;
@@ -239,6 +239,14 @@ TEST_CASE("observation layout is fixed and bounded", "[task]") {
   CHECK(std::string(layout.name()) == "guidewire-nav/obs/5");
   CHECK(layout.size() == 14);
   CHECK(gw::ObservationLayout::parse("guidewire-nav/obs/5").push_pull);
+  layout.since_progress = true;  // obs/7: obs/5 and the time since the tip last progressed
+  CHECK(std::string(layout.name()) == "guidewire-nav/obs/7");
+  CHECK(layout.size() == 15);
+  CHECK(gw::ObservationLayout::parse("guidewire-nav/obs/7").since_progress);
+  layout.push_pull = false;  // not without the push/pull entries
+  CHECK_THROWS_WITH(layout.name(), Catch::Contains("obs/7") && Catch::Contains("push/pull"));
+  layout.push_pull = true;
+  layout.since_progress = false;
   layout.omega_side = false;  // not without omega's sine
   CHECK_THROWS_WITH(layout.name(), Catch::Contains("obs/5"));
   layout.omega_side = true;
@@ -250,6 +258,7 @@ TEST_CASE("observation layout is fixed and bounded", "[task]") {
   CHECK_THROWS_WITH(gw::ObservationLayout::parse("guidewire-nav/obs/9"),
                     Catch::Contains("guidewire-nav/obs/2") && Catch::Contains("guidewire-nav/obs/3"));
   CHECK(std::string(gw::observation_names()[gw::obs_index::kOmegaSide]) == "omega_side");
+  CHECK(std::string(gw::observation_names()[gw::obs_index::kSinceProgress]) == "since_progress");
   CHECK(gw::parse_omega_plane("approach") == gw::OmegaPlane::kApproach);
   CHECK_THROWS_WITH(gw::parse_omega_plane("sideways"), Catch::Contains("correct_branch, approach"));
   CHECK(std::string(gw::observation_names()[gw::obs_index::kOmega]) == "omega");

@@ -12,7 +12,8 @@ Observation: 11 float32 values (engine/task/observation.hpp): theta_t (3), theta
 lambda_t, lambda_{t-n dt}, a_t, omega, s. Layout "guidewire-nav/obs/2" (omega in the approach plane,
 the server's default) or "guidewire-nav/obs/1" (the paper's omega: ``server_args=["--omega-plane",
 "correct_branch"]``); "guidewire-nav/obs/3" (``server_args=["--omega-side"]``) adds a twelfth, omega's
-sine; "guidewire-nav/obs/5" (``server_args=["--push-pull"]``) adds the last insertion and a wrong-branch flag.
+sine; "guidewire-nav/obs/5" (``server_args=["--push-pull"]``) adds the last insertion and a wrong-branch flag,
+"guidewire-nav/obs/7" (``server_args=["--push-pull", "--since-progress"]``) the time since the tip last progressed.
 The exported actor records which one it was trained on.  Action (the spec's ``action_layout``): one float in
 [-1, 1], the proximal rotation rate as a fraction of the maximum ("guidewire-nav/act/1", paper Eq. 3's reward);
 with ``--push-pull`` two, rotation and insertion speed ("guidewire-nav/act/2", engine/task/reward.hpp).
@@ -45,7 +46,7 @@ PROTOCOL = "guidewire-nav/protocol/1"
 # The observation layout is the server's (spec: "obs_layout" and observation_space.names; C++
 # ObservationLayout, engine/task/observation_layout.hpp): obs/1 and obs/2, 11 values, omega's plane differs; obs/3:
 # obs/2 and omega's sine (12 values); obs/4 and obs/6: obs/3 with combined or k-way junctions; obs/5: obs/3 with the
-# push/pull entries (14 values). The client reads what it needs
+# push/pull entries (14 values); obs/7: obs/5 and since_progress (15 values). The client reads what it needs
 # (omega's index) from the names and keeps no copy of the layouts.
 
 

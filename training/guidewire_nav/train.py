@@ -54,6 +54,8 @@ class Settings:
     push_pull: bool = arg(False, "the actor also sets the insertion speed (action [rotation, insertion], act/2; "
                                  "observation obs/5; reward: engine/task/reward.hpp push_pull_reward; "
                                  "docs/recovery.md)")
+    since_progress: bool = arg(False, "with --push-pull: observation obs/7, obs/5 and the time since the tip last "
+                                      "progressed (engine/task/observation.hpp says why)")
     recovery: int = arg(0, "episodes go on after the strict end, at most this many retries (with --push-pull "
                            "the actor pulls back itself; docs/recovery.md)")
     reward_wrong_branch: float = arg(1.0, "--push-pull: reward lost per env step while the tip is in a wrong "
@@ -156,7 +158,7 @@ def server_args(s: Settings) -> list[str]:
             "--junctions", s.junctions] + (["--omega-side"] if s.omega_side else []) + (
         ["--recovery", str(s.recovery)] if s.recovery else []) + (
         ["--push-pull", "--reward-wrong-branch", repr(s.reward_wrong_branch), "--reward-time", repr(s.reward_time)]
-        if s.push_pull else [])
+        if s.push_pull else []) + (["--since-progress"] if s.since_progress else [])
 
 
 def make_env_fn(s: Settings, rank: int, eval_env: bool = False, ray_server=None, seed_offset: int = 0):
@@ -474,7 +476,7 @@ def main(argv=None) -> int:
 
         start_actor = json.loads(Path(s.init_actor).read_text())
         if s.push_pull and start_actor.get("action_size") == 1:  # a rotation actor starts the push/pull one
-            start_actor = widen_to_push_pull(start_actor)
+            start_actor = widen_to_push_pull(start_actor, since_progress=s.since_progress)
         load_actor_json(model, start_actor, log_std=s.init_log_std)
     model.set_logger(configure(str(out / "logs"), ["csv", "tensorboard"]))
 

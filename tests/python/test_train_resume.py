@@ -57,7 +57,14 @@ def test_resume_continues_the_run_from_its_checkpoint(tmp_path):
     with pytest.raises(SystemExit, match="not beyond it"):
         _train(out, "--total-steps", "120", "--resume")
 
-    assert _train(out, "--total-steps", "180", "--resume") == 0
+    import torch
+
+    threads = torch.get_num_threads()
+    try:  # torch's thread count is the machine's, not the run's: a resumed part may set its own
+        assert _train(out, "--total-steps", "180", "--resume", "--torch-threads", "1") == 0
+        assert torch.get_num_threads() == 1
+    finally:
+        torch.set_num_threads(threads)
     summary = json.loads((out / "summary.json").read_text())
     assert summary["steps"] == 180 and summary["resumed_at_steps"] == [120]
     settings = json.loads((out / "settings.json").read_text())

@@ -98,6 +98,9 @@ class Settings:
     net_arch: str = arg("256,256,256", "hidden layers of the actor and the critics (SB3's default is only 2x256)")
     ent_coef: str = arg("auto", "entropy coefficient: 'auto' (learned, paper) or a number")
     device: str = arg("auto", "torch device: auto, cuda or cpu")
+    torch_threads: int = arg(0, "torch's CPU threads (0: its default, one per core). Set 1 for each of several runs "
+                                "sharing the cores: two default runs on 2 cores spin against each other (measured: "
+                                "26 -> 2 steps/s; docs/training.md)")
     # logging, evaluation, checkpoints
     eval_every: int = arg(10_000, "steps between evaluations (0 = only at the end)")
     eval_episodes: int = arg(40, "seeded episodes per evaluation, over the training anatomies (0 = none: pick "
@@ -402,12 +405,12 @@ def latest_checkpoint(out: Path) -> tuple[int, Path, Path] | None:
 
 def check_resumable(s: Settings, out: Path) -> tuple[int, Path, Path]:
     """The checkpoint --resume continues from; the run's settings must be these (but for the steps, the
-    time budget, the progress bar and resume itself)."""
+    time budget, the progress bar, torch's thread count and resume itself)."""
     saved_path = out / "settings.json"
     if not saved_path.is_file():
         raise SystemExit(f"--resume: {saved_path} not found: no run to continue in {out}")
     saved = json.loads(saved_path.read_text())
-    free = {"total_steps", "max_minutes", "progress", "resume"}
+    free = {"total_steps", "max_minutes", "progress", "resume", "torch_threads"}
     differ = [k for k, v in dataclasses.asdict(s).items() if k not in free and k in saved and saved[k] != v]
     if differ:
         raise SystemExit("--resume: settings differ from the run's settings.json: " +
@@ -435,6 +438,8 @@ def main(argv=None) -> int:
         record = saved
     (out / "settings.json").write_text(json.dumps(record, indent=2))
 
+    if s.torch_threads > 0:
+        torch.set_num_threads(s.torch_threads)
     # --- seeding: same seed, same run (up to nondeterministic GPU kernels)
     np.random.seed(s.seed)
     torch.manual_seed(s.seed)

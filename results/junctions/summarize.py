@@ -113,3 +113,34 @@ if name in outer and name in kway:
             mine = [e for e in table[name]["results"]["sac-policy"]["results"] if e["target"] == t]
             cells.append(f"{sum(e['outcome'] == 'success' for e in mine)}/{len(mine)}")
         print(f"| T{t} | " + " | ".join(cells) + " |")
+
+
+print("\nAn actor trained with k-way junctions (obs/6, `runs/obs6_kway`), zero-shot on the corrected pair, against the "
+      "shipped obs/3 actor on the same 50 episodes (trifurcation: with kway; close forks: kway = the paper's reading):\n")
+obs6 = rows("obs6_outer")
+shipped = {"trifurcation tree (outer side branches)": kway.get("trifurcation tree (outer side branches)"),
+           "closely spaced forks (outer side branches)": outer.get("closely spaced forks (outer side branches)")}
+print("| row | shipped obs/3 SAC | obs/6 SAC | won | lost | p | reached by a controller or rotation schedule |")
+print("|---|---|---|---|---|---|---|")
+for name, before in shipped.items():
+    if name not in obs6 or before is None:
+        continue
+    a, b = before["results"]["sac-policy"], obs6[name]["results"]["sac-policy"]
+    won, lost = won_lost(a, b)
+    ceiling = outer[name].get("ceiling")
+    print(f"| {name} | {cell(a)} | {cell(b)} | {won} | {lost} | {sign_test(won, lost):.3f} | "
+          f"{ceiling['reached']}/{ceiling['episodes']} |")
+
+table = {r["name"]: r for r in json.load(open(os.path.join(HERE, "..", "results.json")))["rows"]}
+obs6_table = rows("obs6_table")
+if obs6_table:
+    print("\nThe results table's rows the shipped actor fills, same episodes (shipped obs/3 SAC from results/results.json):\n")
+    print("| row | shipped obs/3 SAC | obs/6 SAC | won | lost | p |")
+    print("|---|---|---|---|---|---|")
+    total = [0, 0, 0, 0]
+    for name, r in obs6_table.items():
+        a, b = table[name]["results"]["sac-policy"], r["results"]["sac-policy"]
+        won, lost = won_lost(a, b)
+        total = [total[0] + a["successes"], total[1] + b["successes"], total[2] + won, total[3] + lost]
+        print(f"| {name} | {cell(a)} | {cell(b)} | {won} | {lost} | {sign_test(won, lost):.3f} |")
+    print(f"| all | {total[0]} | {total[1]} | {total[2]} | {total[3]} | {sign_test(total[2], total[3]):.3f} |")

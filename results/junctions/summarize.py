@@ -2,7 +2,9 @@
 
 separate/, separate_close/: `evaluate --rows ...` with the paper's junction reading (every controller, ceiling);
 combined/, combined_close/: the same rows and seeds with `--junctions combined` (the controllers that read omega);
-separate_outer_50/: the corrected pair, paper's reading; kway_outer/: its trifurcation row with `--junctions kway`.
+separate_outer_50/: the corrected pair, paper's reading; kway_outer/: its trifurcation row with `--junctions kway`;
+obs6_outer/, obs6_table/: the obs/6 actor trained with the k-way patterns on the corrected pair and on the table's
+rows the shipped actor fills (compared with results/results.json's SAC column, same episodes).
 """
 import json
 import os

@@ -133,9 +133,9 @@ for name, before in shipped.items():
     print(f"| {name} | {cell(a)} | {cell(b)} | {won} | {lost} | {sign_test(won, lost):.3f} | "
           f"{ceiling['reached']}/{ceiling['episodes']} |")
 
-table = {r["name"]: r for r in json.load(open(os.path.join(HERE, "..", "results.json")))["rows"]}
 obs6_table = rows("obs6_table")
 if obs6_table:
+    table = rows("..")  # results/results.json, the shipped table
     print("\nThe results table's rows the shipped actor fills, same episodes (shipped obs/3 SAC from results/results.json):\n")
     print("| row | shipped obs/3 SAC | obs/6 SAC | won | lost | p |")
     print("|---|---|---|---|---|---|")

@@ -3,9 +3,9 @@
 results.json: the push/pull actor (act/2) with --recovery 3 on the coronary-like and deformed coronary rows;
 50k/results.json: the run continued (--resume) to its 50,000-step checkpoint; time_cost/results.json: the second
 run (a cost of time in the reward, started from the shipped rotation actor); time_cost_1/results.json: the same
-run with the time cost raised to 1 a step (2026-12-03); since_progress/results.json: the second run's command with
-observation obs/7 (--since-progress, 2026-12-03; since_progress_training/: its training-anatomies row, the coronary
-rows' run was not finished); scripted/results.json: the scripted rule with the
+run with the time cost raised to 1 a step (2026-12-03); since_progress_training/results.json: the second run's
+command with observation obs/7 (--since-progress, 2026-12-03) on the training anatomies (its coronary rows' run was
+not finished); scripted/results.json: the scripted rule with the
 recovery wrapper (--recovery 3) on the same episodes, re-run at this commit; ../recovery/: the shipped
 rotation-only SAC with the wrapper (same episodes, seeds 0-24); every_row/results.json: the time-cost actor
 (the one that ships) and the scripted rule with the wrapper on the table's other eight rows.
@@ -52,8 +52,7 @@ runs = {"push/pull SAC (act/2)": (load("results.json"), "sac-policy"),
         "push/pull SAC (act/2), time cost, from the rotation actor": (load("time_cost", "results.json") |
                                                                       load("every_row", "results.json"), "sac-policy"),
         "push/pull SAC (act/2), time cost 1 (= the wrong-branch cost)": (load("time_cost_1", "results.json"), "sac-policy"),
-        "push/pull SAC (act/2), obs/7 (since_progress), time cost": (load("since_progress", "results.json") |
-                                                                     load("since_progress_training", "results.json"),
+        "push/pull SAC (act/2), obs/7 (since_progress), time cost": (load("since_progress_training", "results.json"),
                                                                      "sac-policy"),
         "scripted omega + wrapper": (load("scripted", "results.json") | load("every_row", "results.json"),
                                      "scripted-omega"),

@@ -72,8 +72,11 @@ int main(int argc, char** argv) {
                  "actor, act/2, pulls back itself); the outcome stays the strict episode's, the procedure's is under "
                  "\"recovery\"")
       ->check(CLI::NonNegativeNumber);
+  double step_time_limit = 0.0;
+  app.add_option("--step-time-limit", step_time_limit, "end an episode as a timeout when one env step runs longer than this many seconds of wall time (0 = no limit, the default: with a limit an outcome can depend on the machine's load; for surfaces where the contact solver crawls)")
+      ->check(CLI::NonNegativeNumber);
   std::string junctions = "separate";
-  app.add_option("--junctions", junctions, "how a junction's wrong branches enter omega: separate (the paper's task, every table row), combined (k-way junctions and closely spaced forks aimed at together, layout obs/4) kway (k-way junctions only, closely spaced forks apart, layout obs/6) or gap (k-way junctions read against the widest angle between their wrong exits, close forks apart, layout obs/8); docs/junctions.md");
+  app.add_option("--junctions", junctions, "how a junction's wrong branches enter omega: separate (the paper's task, every table row), combined (k-way junctions and closely spaced forks aimed at together, layout obs/4), kway (k-way junctions only, closely spaced forks apart, layout obs/6) or gap (k-way junctions read against the widest angle between their wrong exits, close forks apart, layout obs/8); docs/junctions.md");
   std::string task_scale = "auto";
   app.add_option("--task-scale", task_scale, "the wrong-branch and control-zone lengths in millimetres (fixed: the paper's, set for coronaries) or from the vessel's walls (vessel: a wrong branch is entered past its ostium, inside its lumen); auto = vessel for an inlet wider than 4 mm in radius (docs/vessel_scale.md)");
   gw::HeartSettings heart;
@@ -145,6 +148,7 @@ int main(int argc, char** argv) {
       if (show_progress) std::fprintf(stderr, "\r[navigate] episode %d/%d", done, total);
     };
     gw::TraceOptions trace;
+    trace.step_time_limit_s = step_time_limit;
     trace.wire_shape_every = out_dir.empty() ? 0 : gw::wire_shape_stride(anatomy.scene.get(), config.dt_s * config.frame_skip);
     const std::vector<gw::EpisodeTrace> traces = gw::run_batch(task, requests, make_controller, threads, trace, progress);
     if (show_progress) std::fprintf(stderr, "\n");
@@ -166,6 +170,7 @@ int main(int argc, char** argv) {
     summary["push_mm_per_s"] = push_mm_per_s;
     summary["task_scale"] = task.courses.at(0).at(0).vessel_scale ? "vessel" : "fixed";  // --task-scale, resolved
     if (recovery > 0) summary["recovery_attempts"] = recovery;
+    if (step_time_limit > 0) summary["step_time_limit_s"] = step_time_limit;
     if (config.action != gw::ActionLayout::kRotation) summary["action_layout"] = gw::action_layout_name(config.action);
     if (!motion_source.empty())
       summary["heart"] = {{"heart_rate_bpm", anatomy.scene->motion ? anatomy.scene->motion->heart_rate_bpm : 0.0},

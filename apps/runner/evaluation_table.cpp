@@ -194,6 +194,7 @@ nlohmann::json evaluation_settings(const EvaluationOptions& o) {
   // Only when on, so the results.json files written before recovery existed resume as before.
   if (o.recovery_attempts > 0) settings["recovery_attempts"] = o.recovery_attempts;
   if (o.junctions != JunctionModel::kSeparate) settings["junctions"] = junction_model_name(o.junctions);
+  if (o.step_time_limit_s > 0) settings["step_time_limit_s"] = o.step_time_limit_s;
   if (o.episode_count >= 0) settings["episodes"] = {o.first_episode, o.episode_count};  // a shard (issue 40)
   return settings;
 }
@@ -279,6 +280,7 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
       const std::vector<EpisodeRequest> requests(all_requests.begin() + first, all_requests.end());
       TraceOptions trace;
       trace.wire_shape_every = 0;
+      trace.step_time_limit_s = o.step_time_limit_s;
       for (const std::string& kind : o.controllers) {
         if (kind == "policy" && policy.empty()) {
           r["notes"].push_back("SAC column skipped: no policy trained on sensitivity/base only was given");

@@ -56,6 +56,7 @@ struct EvaluationOptions {
   std::string wire_path;                                                // wire parameter JSON ("" = the 0.014" wire)
   int recovery_attempts = 0;  // --recovery K (task_config.hpp): the columns also report the procedure with recovery
   JunctionModel junctions = JunctionModel::kSeparate;  // --junctions (task_config.hpp; issue 41)
+  double step_time_limit_s = 0.0;  // --step-time-limit (run_episode.hpp, TraceOptions; 0 = none)
   // evaluate --episodes FIRST:COUNT (issue 40): run only episodes FIRST .. FIRST+COUNT-1 of each row (a
   // shard; the rest of the row's episodes are drawn as ever, so a shard's episodes are the whole run's).
   // Recorded in the settings as "episodes": [FIRST, COUNT]; count < 0: every episode (not recorded).

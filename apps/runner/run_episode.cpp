@@ -78,7 +78,7 @@ EpisodeTrace run_episode(const NavigationTask& task, int anatomy, int target_id,
   for (;;) {
     const bool in_control = s.in_control;
     const Action action = in_control ? controller.act(s.obs) : Action{};
-    const StepOutcome out = step_episode(task, s, action, {});
+    const StepOutcome out = step_episode(task, s, action, StepLimits{options.step_time_limit_s});
     ++frame;
     record_frame(task, s, out.info, action, in_control, frame, options, trace);
     for (; !strict_over && next_centre < omega_at_centre.size() &&

@@ -14,6 +14,9 @@ struct TraceOptions {
   // Keep the inserted wire polyline every this many env steps, and the last one; 0 = only the last.
   // Tip, time and action are always kept: a few hundred small entries per episode.
   int wire_shape_every = 25;
+  // An env step that runs longer than this on the wall clock ends the episode as a "timeout" naming the limit
+  // (StepLimits, episode.hpp); 0 = none. Off by default: with it, an outcome can depend on the machine's load.
+  double step_time_limit_s = 0.0;
 };
 
 // Runs target `target_id` of anatomy `anatomy` (indices into task.anatomies) from `seed` to its end.

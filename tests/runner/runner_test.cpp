@@ -223,6 +223,24 @@ TEST_CASE("run_batch: threads give the same episodes as one thread, and the summ
   CHECK(summary["results"][2]["steps"] == 25);
 }
 
+TEST_CASE("a step time limit ends the episode at the first step past it as a timeout naming the limit; none is the default",
+          "[runner]") {
+  const ShortT1 t1;
+  gw::TraceOptions options;
+  CHECK(options.step_time_limit_s == 0.0);
+  auto scripted = gw::make_scripted_omega_controller();
+  options.step_time_limit_s = 1e-12;  // any env step runs longer
+  const gw::EpisodeTrace cut = gw::run_episode(t1.task, 0, 1, 5, *scripted, options);
+  CHECK(cut.outcome == "timeout");
+  CHECK(cut.detail.find("time limit") != std::string::npos);
+  CHECK(cut.time_s.size() == 2);  // the reset frame and the one step that ran past the limit
+  options.step_time_limit_s = 0.0;
+  const gw::EpisodeTrace whole = gw::run_episode(t1.task, 0, 1, 5, *scripted, options);
+  CHECK(whole.outcome == "timeout");
+  CHECK(whole.detail == "step limit reached");
+  CHECK(whole.time_s.size() == 26);
+}
+
 TEST_CASE("a wrong branch records omega when the tip reached the lost bifurcation", "[runner]") {
   const ShortT1 t1(0);  // automatic step limit: episodes end at a branch
   const std::vector<gw::EpisodeRequest> requests = {{0, 1, 3}, {0, 2, 4}};

@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
   app.add_option("--step-time-limit", o.step_time_limit_s, "end an episode as a timeout when one env step runs longer than this many seconds of wall time (0 = no limit, the default: with a limit an outcome can depend on the machine's load; for surfaces where the contact solver crawls)")
       ->check(CLI::NonNegativeNumber);
   std::string junctions = "separate";
-  app.add_option("--junctions", junctions, "how a junction's wrong branches enter omega: separate (the paper's task, every table row), combined (k-way junctions and closely spaced forks aimed at together, layout obs/4), kway (k-way junctions only, closely spaced forks apart, layout obs/6) or gap (k-way junctions read against the widest angle between their wrong exits, close forks apart, layout obs/8); docs/junctions.md");
+  app.add_option("--junctions", junctions, "how a junction's wrong branches enter omega: separate (the paper's task, every table row), combined (k-way junctions and closely spaced forks aimed at together, layout obs/4) or kway (k-way junctions only, closely spaced forks apart, layout obs/6); docs/junctions.md");
   app.add_option("--threads", o.threads, "episodes run in parallel");
   app.add_option("--rows", rows_filter, "only rows whose name contains one of these comma-separated texts (coronary,var1)");
   app.add_option("--out", out_dir, "folder for results.md and results.json (both rewritten after every row, so an "

@@ -43,9 +43,8 @@ int main(int argc, char** argv) {
                "needs --omega-plane approach)");
   app.add_option("--junctions", junctions,
                  "how a junction's wrong branches enter omega: separate (the paper's), combined (k-way junctions and "
-                 "closely spaced forks aimed at together; with --omega-side: layout obs/4), kway (k-way junctions "
-                 "only, close forks apart; layout obs/6) or gap (k-way junctions against the widest angle between "
-                 "their wrong exits, close forks apart; layout obs/8); docs/junctions.md")
+                 "closely spaced forks aimed at together; with --omega-side: layout obs/4) or kway (k-way junctions "
+                 "only, close forks apart; layout obs/6); docs/junctions.md")
       ->capture_default_str();
   bool push_pull = false;
   app.add_flag("--push-pull", push_pull,

@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
   app.add_option("--step-time-limit", step_time_limit, "end an episode as a timeout when one env step runs longer than this many seconds of wall time (0 = no limit, the default: with a limit an outcome can depend on the machine's load; for surfaces where the contact solver crawls)")
       ->check(CLI::NonNegativeNumber);
   std::string junctions = "separate";
-  app.add_option("--junctions", junctions, "how a junction's wrong branches enter omega: separate (the paper's task, every table row), combined (k-way junctions and closely spaced forks aimed at together, layout obs/4), kway (k-way junctions only, closely spaced forks apart, layout obs/6) or gap (k-way junctions read against the widest angle between their wrong exits, close forks apart, layout obs/8); docs/junctions.md");
+  app.add_option("--junctions", junctions, "how a junction's wrong branches enter omega: separate (the paper's task, every table row), combined (k-way junctions and closely spaced forks aimed at together, layout obs/4) or kway (k-way junctions only, closely spaced forks apart, layout obs/6); docs/junctions.md");
   std::string task_scale = "auto";
   app.add_option("--task-scale", task_scale, "the wrong-branch and control-zone lengths in millimetres (fixed: the paper's, set for coronaries) or from the vessel's walls (vessel: a wrong branch is entered past its ostium, inside its lumen); auto = vessel for an inlet wider than 4 mm in radius (docs/vessel_scale.md)");
   gw::HeartSettings heart;

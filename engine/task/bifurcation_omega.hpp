@@ -15,10 +15,8 @@ struct OmegaReading {
 // Inputs: `b` (its omega_normal and wrong_in_plane), `curvature` (tip curvature vector, 1/mm),
 // `rest_curvature` (the tip's, 1/mm), `model`. kSeparate: the largest omega over the wrong directions
 // and the side of that same one (the paper with one wrong branch); kCombined and kKWay with two or more
-// wrong directions: omega and side against their mean direction, both 0 where they cancel; kGap with two or
-// more: against the direction opposite the middle of the widest angle between them about the plane normal
-// (-1 bent into that middle; wrong directions along the normal left out) (which directions `b` holds is
-// make_course's: kCombined adds close forks', kKWay and kGap do not).
+// wrong directions: omega and side against their mean direction, both 0 where they cancel (which
+// directions `b` holds is make_course's: kCombined adds close forks', kKWay does not).
 // Output: omega and side; both 0 when `b` has no wrong direction.
 OmegaReading bifurcation_omega(const CourseBifurcation& b, const Eigen::Vector3d& curvature, double rest_curvature,
                                JunctionModel model);

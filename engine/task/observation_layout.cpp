@@ -17,8 +17,7 @@ struct Layout {
   bool push_pull;
   bool since_progress;
 };
-// obs/6 is obs/3 with k-way junctions read together (close forks apart): the same entries again; obs/8 the same
-// with k-way junctions read against their widest gap.
+// obs/6 is obs/3 with k-way junctions read together (close forks apart): the same entries again.
 // obs/5 is obs/3 with the push/pull actor's two entries (act/2) after omega_side; obs/7 is obs/5 with the time
 // since the tip last progressed after them.
 constexpr Layout kLayouts[] = {
@@ -28,8 +27,7 @@ constexpr Layout kLayouts[] = {
     {"guidewire-nav/obs/4", OmegaPlane::kApproach, true, JunctionModel::kCombined, false, false},
     {"guidewire-nav/obs/5", OmegaPlane::kApproach, true, JunctionModel::kSeparate, true, false},
     {"guidewire-nav/obs/6", OmegaPlane::kApproach, true, JunctionModel::kKWay, false, false},
-    {"guidewire-nav/obs/7", OmegaPlane::kApproach, true, JunctionModel::kSeparate, true, true},
-    {"guidewire-nav/obs/8", OmegaPlane::kApproach, true, JunctionModel::kGap, false, false}};
+    {"guidewire-nav/obs/7", OmegaPlane::kApproach, true, JunctionModel::kSeparate, true, true}};
 }  // namespace
 
 const char* ObservationLayout::name() const {
@@ -45,8 +43,6 @@ const char* ObservationLayout::name() const {
     throw std::invalid_argument("omega_side needs omega's plane 'approach' (no layout has it in the paper's plane)");
   if (junctions == JunctionModel::kKWay)
     throw std::invalid_argument("k-way junctions need omega's plane 'approach' and omega_side (layout obs/6)");
-  if (junctions == JunctionModel::kGap)
-    throw std::invalid_argument("widest-gap junctions need omega's plane 'approach' and omega_side (layout obs/8)");
   throw std::invalid_argument("combined junctions need omega's plane 'approach' and omega_side (layout obs/4)");
 }
 
@@ -80,8 +76,7 @@ JunctionModel parse_junction_model(const std::string& text) {
   if (text == "separate") return JunctionModel::kSeparate;
   if (text == "combined") return JunctionModel::kCombined;
   if (text == "kway") return JunctionModel::kKWay;
-  if (text == "gap") return JunctionModel::kGap;
-  throw std::invalid_argument("junction model '" + text + "' is not one of separate, combined, kway, gap");
+  throw std::invalid_argument("junction model '" + text + "' is not one of separate, combined, kway");
 }
 
 const char* junction_model_name(JunctionModel model) {
@@ -89,7 +84,6 @@ const char* junction_model_name(JunctionModel model) {
     case JunctionModel::kSeparate: return "separate";
     case JunctionModel::kCombined: return "combined";
     case JunctionModel::kKWay: return "kway";
-    case JunctionModel::kGap: return "gap";
   }
   return "separate";
 }

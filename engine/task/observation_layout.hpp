@@ -11,7 +11,6 @@
 //                        actor's (action layout act/2, action_layout.hpp; docs/recovery.md)
 //   guidewire-nav/obs/6  obs/3 with k-way junctions (docs/junctions.md), 12 entries
 //   guidewire-nav/obs/7  obs/5 + the time since the tip last progressed, 15 entries (act/2; docs/recovery.md)
-//   guidewire-nav/obs/8  obs/3 with k-way junctions read against their widest gap (docs/junctions.md), 12 entries
 #include <string>
 
 namespace gw {
@@ -20,7 +19,7 @@ inline constexpr int kThetaCount = 3;
 // Every entry is computed on every step; a layout hands its first size() entries to the actor.
 inline constexpr int kObservationSize = 2 * kThetaCount + 9;
 inline constexpr int kPaperObservationSize = 2 * kThetaCount + 5;  // obs/1, obs/2: without omega_side
-inline constexpr int kSideObservationSize = kPaperObservationSize + 1;  // obs/3, obs/4, obs/6, obs/8: with omega_side
+inline constexpr int kSideObservationSize = kPaperObservationSize + 1;  // obs/3, obs/4, obs/6: with omega_side
 inline constexpr int kPushPullObservationSize = kSideObservationSize + 2;  // obs/5: with the push/pull entries
 
 // The plane omega is measured in (observation.hpp, omega).
@@ -48,19 +47,12 @@ enum class JunctionModel {
               // aiming at two forks together throws away which side each wrong branch is on, while the
               // separate reading aims away from one and then the next (results/junctions). Identical to
               // kSeparate on a tree of two-way forks and to kCombined on one without close forks
-  kGap,       // within one k-way junction, omega is read against one virtual wrong branch: the direction
-              // opposite the middle of the widest angle between the wrong exits about the plane normal, so
-              // that -1 is the bend farthest from every wrong exit; closely spaced forks each on their own.
-              // Why: kKWay's mean cancels where wrong exits lie on opposite sides (the straight-on exit of a
-              // planar trifurcation reads 0 at every roll), the max cannot reach -1 where they lie around the
-              // trunk; the widest gap's middle is the mean's aim when the exits lie on one side and still an
-              // aim (out of their plane) when they cancel. Identical to kSeparate on a tree of two-way forks
 };
 
 struct ObservationLayout {
   OmegaPlane omega_plane = OmegaPlane::kApproach;  // kCorrectBranch = the paper's definition (obs/1)
   bool omega_side = false;                         // obs/3, obs/4: omega's sine as a twelfth entry
-  JunctionModel junctions = JunctionModel::kSeparate;  // kCombined: obs/4, kKWay: obs/6, kGap: obs/8
+  JunctionModel junctions = JunctionModel::kSeparate;  // kCombined: obs/4, kKWay: obs/6
   bool push_pull = false;                          // obs/5: the insertion action and the wrong-branch flag
                                                    // as entries 13 and 14 (the act/2 actor's)
   bool since_progress = false;                     // obs/7: obs/5 and the time since the tip last progressed
@@ -81,7 +73,7 @@ struct ObservationLayout {
 OmegaPlane parse_omega_plane(const std::string& text);
 const char* omega_plane_name(OmegaPlane plane);
 
-// "separate" | "combined" | "kway" | "gap"; throws std::invalid_argument for anything else.
+// "separate" | "combined" | "kway"; throws std::invalid_argument for anything else.
 JunctionModel parse_junction_model(const std::string& text);
 const char* junction_model_name(JunctionModel model);
 

@@ -116,10 +116,6 @@ TEST_CASE("a 3-way junction in three azimuths: combined omega reaches -1 aiming 
     CHECK(rk.omega == rc.omega);
     CHECK(rk.side == rc.side);
   }
-  // gap: the widest angle between the two wrong exits is the one around the correct exit; -1 aimed there.
-  CHECK(gw::bifurcation_omega(bk, towards, kRest, gw::JunctionModel::kGap).omega == Approx(-1.0).margin(1e-6));
-  CHECK(best_over_roll(bk, gw::JunctionModel::kGap, &azimuth) == Approx(-1.0).margin(1e-3));
-  CHECK(std::min(azimuth, 2.0 * kPi - azimuth) < 2.0 * kPi / 360.0 + 1e-9);
 }
 
 TEST_CASE("a planar trifurcation: the side exit aims away from both others, the middle exit reads 0 combined",
@@ -146,67 +142,32 @@ TEST_CASE("a planar trifurcation: the side exit aims away from both others, the 
   // The max reads |cos|: the in-plane bends are the worst, the out-of-plane one 0.
   CHECK(gw::bifurcation_omega(middle, kRest * Vector3d(1, 0, 0), kRest, gw::JunctionModel::kSeparate).omega ==
         Approx(1.0).margin(1e-6));
-  // gap: the two wrong exits leave 180 degrees apart; the middle of the first widest angle (out of their
-  // plane) reads -1, bent at either wrong exit reads 0, and the side says which way to roll.
+}
+
+TEST_CASE("kway at a planar trifurcation's middle exit whose side exits are not exactly opposite, as a mesh gives: "
+          "the mean points out of their plane and reads -1 there",
+          "[task][junctions]") {
+  // Side exits 1 degree off one plane: their directions in omega's plane are 179 degrees apart, their mean
+  // is short but not zero, and once normalised it is the bisector of the small angle, out of their plane.
+  // So kway aims the tip out of the exits' plane (where the extracted t5 pattern lost the middle exit 4 of
+  // 6: the held bend slides into a side exit; results/junctions/README.md), it does not read 0 there.
+  const double tilt = 35.0 * kPi / 180.0, off = 1.0 * kPi / 180.0;
+  const gw::CenterlineGraph g = k_way_graph({exit_direction(tilt, kPi + off), Vector3d::UnitY(), exit_direction(tilt, 0.0)});
+  const std::vector<gw::Polyline> lines = lines_of(g);
+  gw::TaskConfig kway;
+  kway.observation.junctions = gw::JunctionModel::kKWay;
+  const gw::CourseBifurcation middle = gw::make_course(g, lines, target_on(g, 2), kway).bifurcations.at(0);
+  REQUIRE(middle.wrong_in_plane.size() == 2);
   double azimuth = 0;
-  CHECK(best_over_roll(middle, gw::JunctionModel::kGap, &azimuth) == Approx(-1.0).margin(1e-3));
-  CHECK(std::abs(std::sin(azimuth)) > 0.999);
-  for (const Vector3d& k : {Vector3d(1, 0, 0), Vector3d(-1, 0, 0)}) {
-    const gw::OmegaReading r = gw::bifurcation_omega(middle, kRest * k, kRest, gw::JunctionModel::kGap);
-    CHECK(r.omega == Approx(0.0).margin(1e-9));
-    CHECK(std::abs(r.side) == Approx(1.0).margin(1e-9));
-  }
-  // The side exit: both wrong exits towards +x, so gap aims at -x as the mean does.
-  CHECK(gw::bifurcation_omega(side, kRest * Vector3d(-1, 0, 0), kRest, gw::JunctionModel::kGap).omega ==
-        Approx(-1.0).margin(1e-6));
+  CHECK(best_over_roll(middle, gw::JunctionModel::kKWay, &azimuth) == Approx(-1.0).margin(1e-3));
+  CHECK(std::abs(std::sin(azimuth)) > 0.999);  // out of the exits' plane (x-y)
+  for (const Vector3d& k : {Vector3d(1, 0, 0), Vector3d(-1, 0, 0)})  // bent at either side exit
+    CHECK(std::abs(gw::bifurcation_omega(middle, kRest * k, kRest, gw::JunctionModel::kKWay).omega) < 0.02);
+  // The paper's reading there: the most dangerous exit, |cos| of the bend, lowest (0) out of the plane.
+  CHECK(best_over_roll(middle, gw::JunctionModel::kSeparate) == Approx(0.0).margin(0.02));
 }
 
-TEST_CASE("gap: the bend reading -1 is the one farthest from every wrong exit", "[task][junctions]") {
-  // Wrong directions at random angles about +y; over a full roll the gap reading's lowest bend lies where the
-  // angle to the nearest wrong direction is largest (brute force, 1 degree), for 2 to 5 wrong directions.
-  gw::CourseBifurcation b;
-  b.omega_normal = Vector3d::UnitY();
-  unsigned state = 12345u;
-  auto uniform = [&state] {
-    state = state * 1664525u + 1013904223u;
-    return (state >> 8) / 16777216.0;
-  };
-  auto unit = [](double a) { return Vector3d(std::cos(a), 0, std::sin(a)); };
-  for (int trial = 0; trial < 200; ++trial) {
-    b.wrong_in_plane.clear();
-    const int k = 2 + trial % 4;
-    std::vector<double> wrong;
-    for (int i = 0; i < k; ++i) {
-      wrong.push_back(2.0 * kPi * uniform());
-      b.wrong_in_plane.push_back(unit(wrong.back()));
-    }
-    auto nearest = [&wrong](double a) {
-      double d = kPi;
-      for (double w : wrong) d = std::min(d, std::abs(std::remainder(a - w, 2.0 * kPi)));
-      return d;
-    };
-    double best_clearance = 0;
-    for (int i = 0; i < 3600; ++i) best_clearance = std::max(best_clearance, nearest(2.0 * kPi * i / 3600.0));
-    double azimuth = 0;
-    CHECK(best_over_roll(b, gw::JunctionModel::kGap, &azimuth) == Approx(-1.0).margin(1e-3));
-    CHECK(nearest(azimuth) >= best_clearance - 2.0 * kPi / 360.0);
-  }
-  // One wrong direction (and one along the normal, left out): the paper's reading.
-  b.wrong_in_plane = {unit(0.7), Vector3d::Zero()};
-  for (const Vector3d& k3 : {Vector3d(0.2, 0, 0), Vector3d(0, 0, 0.2), Vector3d(-0.1, 0.05, 0.17)}) {
-    const gw::OmegaReading g = gw::bifurcation_omega(b, k3, kRest, gw::JunctionModel::kGap);
-    const gw::CourseBifurcation one = [&] {
-      gw::CourseBifurcation c = b;
-      c.wrong_in_plane = {unit(0.7)};
-      return c;
-    }();
-    const gw::OmegaReading s = gw::bifurcation_omega(one, k3, kRest, gw::JunctionModel::kSeparate);
-    CHECK(g.omega == s.omega);
-    CHECK(g.side == s.side);
-  }
-}
-
-TEST_CASE("a two-way fork reads the same with junctions separate, combined and gap", "[task][junctions]") {
+TEST_CASE("a two-way fork reads the same with junctions separate and combined", "[task][junctions]") {
   for (const gw::CenterlineGraph& g : {gwtest::y_graph(), gwtest::t_graph(), gwtest::two_level_tree()}) {
     const std::vector<gw::Polyline> lines = lines_of(g);
     gw::TaskConfig separate, combined;
@@ -221,11 +182,8 @@ TEST_CASE("a two-way fork reads the same with junctions separate, combined and g
         for (const Vector3d& k3 : {Vector3d(0.2, 0, 0), Vector3d(0, 0, 0.2), Vector3d(-0.1, 0.05, 0.17)}) {
           const gw::OmegaReading ra = gw::bifurcation_omega(a, k3, kRest, gw::JunctionModel::kSeparate);
           const gw::OmegaReading rb = gw::bifurcation_omega(b, k3, kRest, gw::JunctionModel::kCombined);
-          const gw::OmegaReading rg = gw::bifurcation_omega(b, k3, kRest, gw::JunctionModel::kGap);
           CHECK(ra.omega == rb.omega);  // bit for bit
           CHECK(ra.side == rb.side);
-          CHECK(ra.omega == rg.omega);
-          CHECK(ra.side == rg.side);
         }
       }
     }
@@ -288,11 +246,8 @@ TEST_CASE("closely spaced forks: the first fork also aims away from the second's
       for (const Vector3d& k3 : {Vector3d(0.2, 0, 0), Vector3d(0, 0, 0.2), Vector3d(-0.1, 0.05, 0.17)}) {
         const gw::OmegaReading rk = gw::bifurcation_omega(ck.bifurcations[k], k3, kRest, gw::JunctionModel::kKWay);
         const gw::OmegaReading rs = gw::bifurcation_omega(cs.bifurcations[k], k3, kRest, gw::JunctionModel::kSeparate);
-        const gw::OmegaReading rg = gw::bifurcation_omega(ck.bifurcations[k], k3, kRest, gw::JunctionModel::kGap);
         CHECK(rk.omega == rs.omega);
         CHECK(rk.side == rs.side);
-        CHECK(rg.omega == rs.omega);  // gap: the same course as kway (make_course adds nothing), one direction
-        CHECK(rg.side == rs.side);
       }
     }
     if (gap < 8.0) {
@@ -319,7 +274,7 @@ TEST_CASE("layout obs/4 is obs/3 with combined junctions", "[task][junctions]") 
   c.junctions = gw::JunctionModel::kCombined;  // obs/2 with combined junctions: no such layout
   CHECK_THROWS_WITH(c.name(), Catch::Contains("obs/4"));
   CHECK(gw::parse_junction_model("combined") == gw::JunctionModel::kCombined);
-  CHECK_THROWS_WITH(gw::parse_junction_model("merged"), Catch::Contains("separate, combined, kway, gap"));
+  CHECK_THROWS_WITH(gw::parse_junction_model("merged"), Catch::Contains("separate, combined, kway"));
   // obs/6: obs/3 with k-way junctions read together, close forks apart.
   gw::ObservationLayout k = gw::ObservationLayout::parse("guidewire-nav/obs/6");
   CHECK(k.junctions == gw::JunctionModel::kKWay);
@@ -330,16 +285,6 @@ TEST_CASE("layout obs/4 is obs/3 with combined junctions", "[task][junctions]") 
   CHECK(std::string(gw::junction_model_name(gw::JunctionModel::kKWay)) == "kway");
   k.omega_side = false;
   CHECK_THROWS_WITH(k.name(), Catch::Contains("obs/6"));
-  // obs/8: obs/3 with k-way junctions read against their widest gap.
-  gw::ObservationLayout w = gw::ObservationLayout::parse("guidewire-nav/obs/8");
-  CHECK(w.junctions == gw::JunctionModel::kGap);
-  CHECK(w.omega_side);
-  CHECK(w.size() == gw::kSideObservationSize);
-  CHECK(std::string(w.name()) == "guidewire-nav/obs/8");
-  CHECK(gw::parse_junction_model("gap") == gw::JunctionModel::kGap);
-  CHECK(std::string(gw::junction_model_name(gw::JunctionModel::kGap)) == "gap");
-  w.omega_side = false;
-  CHECK_THROWS_WITH(w.name(), Catch::Contains("obs/8"));
   gw::TaskConfig bad;
   bad.close_junction_diameters = -1;
   CHECK_THROWS_WITH(gw::check_task_config(bad), Catch::Contains("close_junction_diameters"));

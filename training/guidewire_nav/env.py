@@ -45,8 +45,8 @@ import guidewire_nav
 PROTOCOL = "guidewire-nav/protocol/1"
 # The observation layout is the server's (spec: "obs_layout" and observation_space.names; C++
 # ObservationLayout, engine/task/observation_layout.hpp): obs/1 and obs/2, 11 values, omega's plane differs; obs/3:
-# obs/2 and omega's sine (12 values); obs/4, obs/6 and obs/8: obs/3 with combined, k-way or widest-gap junctions;
-# obs/5: obs/3 with the push/pull entries (14 values); obs/7: obs/5 and since_progress (15 values). The client reads what it needs
+# obs/2 and omega's sine (12 values); obs/4 and obs/6: obs/3 with combined or k-way junctions; obs/5: obs/3 with the
+# push/pull entries (14 values); obs/7: obs/5 and since_progress (15 values). The client reads what it needs
 # (omega's index) from the names and keeps no copy of the layouts.
 
 

@@ -49,9 +49,8 @@ class Settings:
     omega_side: bool = arg(False, "also observe omega's sine (obs/3, approach plane only): which way the rotation "
                                   "carries the bend towards -1 (engine/task/observation.hpp says why)")
     junctions: str = arg("separate", "how a junction's wrong branches enter omega: separate (the paper's), combined "
-                                     "(k-way junctions and close forks; with --omega-side: obs/4), kway (k-way "
-                                     "junctions only; obs/6) or gap (k-way junctions against their widest gap; "
-                                     "obs/8); docs/junctions.md")
+                                     "(k-way junctions and close forks; with --omega-side: obs/4) or kway (k-way "
+                                     "junctions only; obs/6); docs/junctions.md")
     push_pull: bool = arg(False, "the actor also sets the insertion speed (action [rotation, insertion], act/2; "
                                  "observation obs/5; reward: engine/task/reward.hpp push_pull_reward; "
                                  "docs/recovery.md)")

@@ -4,7 +4,8 @@ separate/, separate_close/: `evaluate --rows ...` with the paper's junction read
 combined/, combined_close/: the same rows and seeds with `--junctions combined` (the controllers that read omega);
 separate_outer_50/: the corrected pair, paper's reading; kway_outer/: its trifurcation row with `--junctions kway`;
 obs6_outer/, obs6_table/: the obs/6 actor trained with the k-way patterns on the corrected pair and on the table's
-rows the shipped actor fills (compared with results/results.json's SAC column, same episodes).
+rows the shipped actor fills (compared with results/results.json's SAC column, same episodes);
+gap_outer/: the corrected trifurcation row with the widest-gap reading (commit 983e190, reverted), against kway_outer/.
 """
 import json
 import os
@@ -146,3 +147,14 @@ if obs6_table:
         total = [total[0] + a["successes"], total[1] + b["successes"], total[2] + won, total[3] + lost]
         print(f"| {name} | {cell(a)} | {cell(b)} | {won} | {lost} | {sign_test(won, lost):.3f} |")
     print(f"| all | {total[0]} | {total[1]} | {total[2]} | {total[3]} | {sign_test(total[2], total[3]):.3f} |")
+
+gap = rows("gap_outer")
+name = "trifurcation tree (outer side branches)"
+if name in gap and name in kway:
+    print("\nThe widest-gap reading (commit 983e190, reverted) against kway on the corrected trifurcation tree, "
+          "episodes with the same outcome, steps and simulated time:\n")
+    for c in COLUMNS[:3]:
+        key = lambda e: (e["target"], e["seed"])
+        a = {key(e): (e["outcome"], e["steps"], e["sim_time_s"]) for e in kway[name]["results"][c]["results"]}
+        b = {key(e): (e["outcome"], e["steps"], e["sim_time_s"]) for e in gap[name]["results"][c]["results"]}
+        print(f"- {c}: {sum(a.get(k) == v for k, v in b.items())} of {len(b)} ({cell(gap[name]['results'][c])})")

@@ -65,6 +65,11 @@ int main(int argc, char** argv) {
   app.add_option("--reward-time", config.reward_time_per_step,
                  "--push-pull: reward lost every env step, a cost of time (0: stopping is free; engine/task/reward.hpp)")
       ->capture_default_str();
+  std::string reward_aim = gw::reward_aim_name(config.reward_aim);
+  app.add_option("--reward-aim", reward_aim,
+                 "--push-pull: the orientation term times the step's new depth (depth) or its change over the step "
+                 "(change; engine/task/reward.hpp says why)")
+      ->capture_default_str();
   app.add_option("--task-scale", task_scale,
                  "wrong-branch and control-zone lengths: fixed (the paper's millimetres), vessel (from the walls), "
                  "auto (vessel for an inlet wider than 4 mm in radius; docs/vessel_scale.md)")
@@ -102,6 +107,7 @@ int main(int argc, char** argv) {
     config.control_mode = gw::parse_control_mode(control_mode);
     config.observation.omega_plane = gw::parse_omega_plane(omega_plane);
     config.observation.junctions = gw::parse_junction_model(junctions);
+    config.reward_aim = gw::parse_reward_aim(reward_aim);
     config.task_scale = gw::parse_task_scale(task_scale);
     if (push_pull) {
       config.action = gw::ActionLayout::kRotationInsertion;

@@ -112,7 +112,8 @@ std::string spec_json(const NavigationTask& task) {
               {"success_radius_mm", c.success_radius_mm},
               {"recovery_attempts", c.recovery_attempts},
               {"reward_wrong_branch", c.reward_wrong_branch},
-              {"reward_time_per_step", c.reward_time_per_step}}}};
+              {"reward_time_per_step", c.reward_time_per_step},
+              {"reward_aim", reward_aim_name(c.reward_aim)}}}};
   return j.dump();
 }
 

@@ -294,7 +294,7 @@ void end_retraction(const NavigationTask& task, EpisodeState& s) {
 // one of K retries and the one after the K-th ends it, as does a stall (wire pushed in without progress);
 // recovery_time_s past the step limit bounds it (task_config.hpp).
 void end_push_pull_step(const NavigationTask& task, EpisodeState& s, int lost, double rotation, double insertion,
-                        StepOutcome& out) {
+                        double omega_before, StepOutcome& out) {
   const TaskConfig& c = task.config;
   const bool in_wrong_branch = lost >= 0;
   const bool entered = in_wrong_branch && s.obs[obs_index::kWrongBranch] == 0.0;  // the entry holds the last step's
@@ -308,7 +308,8 @@ void end_push_pull_step(const NavigationTask& task, EpisodeState& s, int lost, d
   const double new_depth = std::clamp(s.pushed_steps - s.deepest_pushed_steps, 0.0, 1.0);
   s.deepest_pushed_steps = std::max(s.deepest_pushed_steps, s.pushed_steps);
   out.reward = push_pull_reward(s.obs[obs_index::kOmega], s.obs[obs_index::kLambda], rotation, new_depth,
-                                in_wrong_branch, c.reward_wrong_branch, c.reward_time_per_step, c.reward);
+                                in_wrong_branch, c.reward_wrong_branch, c.reward_time_per_step, c.reward, c.reward_aim,
+                                omega_before);
 
   // A stall is wire pushed in without progress: stuck_steps pushes at the full speed (the strict rule's 24 mm
   // under the constant push) since the tip last gained stuck_progress_mm. An actor that stops to aim does not
@@ -362,6 +363,7 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, const Acti
   const Anatomy& anatomy = task.anatomies[static_cast<size_t>(s.anatomy)];
   const bool retracting = s.retracting;
   const bool push_pull = c.action == ActionLayout::kRotationInsertion;
+  const double omega_before = s.obs[obs_index::kOmega];  // act/2's reward with RewardAim::kByChange
   const double applied = s.in_control && !retracting ? std::clamp(action.rotation, -1.0, 1.0) : 0.0;
   // act/2 in control: the actor's insertion, not pulling the wire out past its start insertion.
   double insertion = push_pull && s.in_control ? std::clamp(action.insertion, -1.0, 1.0) : 1.0;
@@ -470,7 +472,7 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, const Acti
   const int lost = out.info.success ? -1 : wrong_branch_entered(c, geometry, current_course(s), s.tip, s.course_distance_mm);
   out.info.wrong_branch = lost >= 0;
   if (push_pull) {
-    end_push_pull_step(task, s, lost, applied, insertion, out);
+    end_push_pull_step(task, s, lost, applied, insertion, omega_before, out);
     out.reward -= force_cost;
     return out;
   }

@@ -1,5 +1,6 @@
 #pragma once
 // The reward of paper Eq. 3, with the orientation sigmoid's centre and slope as parameters.
+#include <string>
 
 namespace gw {
 
@@ -26,7 +27,26 @@ double navigation_reward(double omega, double lambda_ratio, double action, const
 // outside a wrong child and without a time cost it is Eq. 3. But then stopping is free, and an actor that may
 // enter a wrong child drifts to stopping (the 50k checkpoint of the first push/pull run did: results/push_pull);
 // a time cost makes every step spent short of the target cost something (TaskConfig::reward_time_per_step).
+//
+// How the act/2 reward pays for the aim (TaskConfig::reward_aim):
+//   kByDepth   the orientation term times new depth, as above (the push/pull actors trained before 2026-12-03)
+//   kByChange  the orientation term's change over the step, O(omega) - O(omega_before), paid whatever the wire
+//              does; only the progress term is weighted by new depth. Why: weighted by new depth, the orientation
+//              term makes every push while omega is above the sigmoid's centre cost up to 1, where stopping costs
+//              only the time: an actor learns to stop, or to pull back, wherever pushing on turns omega the wrong
+//              way before it gets better (an S-curve before a fork), and training pulled the widened rotation
+//              actor's training episodes from 96% success to 40-78% (results/push_pull). A change telescopes: over
+//              an episode it sums to O(last) - O(first) whatever the path (potential-based shaping, Ng, Harada and
+//              Russell 1999), so it pays neither for holding an aim nor for going back and forth, and it costs
+//              a push only by the aim it loses, which turning back gains again.
+enum class RewardAim { kByDepth, kByChange };
+// "depth" | "change"; throws std::invalid_argument for anything else.
+RewardAim parse_reward_aim(const std::string& text);
+const char* reward_aim_name(RewardAim aim);
+
+// `omega_before` is the step's omega before it (read by kByChange only).
 double push_pull_reward(double omega, double lambda_ratio, double rotation, double new_depth, bool in_wrong_branch,
-                        double wrong_branch_cost, double time_cost, const RewardShape& shape = {});
+                        double wrong_branch_cost, double time_cost, const RewardShape& shape = {},
+                        RewardAim aim = RewardAim::kByDepth, double omega_before = 0.0);
 
 }  // namespace gw

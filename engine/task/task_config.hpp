@@ -131,6 +131,9 @@ struct TaskConfig {
   // ... and less this every env step (a cost of time; 0 = the first push/pull run's reward; the shipped
   // push/pull actor was trained with 0.25). Without it stopping is free (reward.hpp says why that matters).
   double reward_time_per_step = 0.0;
+  // ... and how it pays for the aim: the orientation term times new depth (kByDepth, the push/pull actors trained
+  // before 2026-12-03) or its change over each step (kByChange; reward.hpp says why).
+  RewardAim reward_aim = RewardAim::kByDepth;
   // --- Force penalty (issue 37 item 4; 0 = the paper's reward, Eq. 3) ---
   // Each env step's reward loses this times the step's peak total wall force in newtons (StepInfo::
   // wall_force_peak_total_mN / 1000): a wire pressed on the wall at 1.5 N (the vessel-rupture threshold

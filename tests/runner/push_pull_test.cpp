@@ -144,6 +144,32 @@ TEST_CASE("push/pull: a time cost comes off every step, stopped or moving, and n
   CHECK_THROWS_WITH(gw::check_task_config(costly.config), Catch::Contains("reward_time_per_step"));
 }
 
+TEST_CASE("push/pull: the aim paid by its change over the step, whatever the wire does; by new depth by default",
+          "[runner][push_pull]") {
+  gw::NavigationTask depth = t1_task(true, 0), change = t1_task(true, 0);
+  CHECK(depth.config.reward_aim == gw::RewardAim::kByDepth);
+  change.config.reward_aim = gw::RewardAim::kByChange;
+  const gw::RewardShape shape = depth.config.reward;
+  auto orientation = [&shape](double w) { return 2.0 / (1.0 + std::exp(shape.omega_slope * (w - shape.omega_centre))) - 1.0; };
+  gw::EpisodeState a = gw::reset_episode(depth, 0, 1, 3), b = gw::reset_episode(change, 0, 1, 3);
+  double omega_before = b.obs[gw::obs_index::kOmega];
+  for (int k = 0; k < 40; ++k) {
+    const gw::Action act{0.3, k < 10 ? 1.0 : (k < 25 ? 0.0 : 1.0)};  // push (new depth 1), stop (0), push on
+    const gw::StepOutcome oa = gw::step_episode(depth, a, act), ob = gw::step_episode(change, b, act);
+    REQUIRE(a.tip == b.tip);  // the reward changes nothing else
+    const double omega = ob.obs[gw::obs_index::kOmega];
+    const double aim_change = orientation(omega) - orientation(omega_before);
+    if (k < 10)  // new depth 1: depth pays O(omega) + P, change pays O(omega) - O(omega before) + P
+      REQUIRE(ob.reward - oa.reward == Approx(-orientation(omega_before)).margin(1e-9));
+    else if (k < 25)  // stopped: depth pays no aim, change pays its change; both pay the effort
+      REQUIRE(ob.reward - oa.reward == Approx(aim_change).margin(1e-9));
+    omega_before = omega;
+  }
+  CHECK(gw::parse_reward_aim("change") == gw::RewardAim::kByChange);
+  CHECK(std::string(gw::reward_aim_name(gw::RewardAim::kByDepth)) == "depth");
+  CHECK_THROWS_WITH(gw::parse_reward_aim("level"), Catch::Contains("depth, change"));
+}
+
 TEST_CASE("push/pull: a stall is wire pushed in without progress", "[runner][push_pull]") {
   // With a retry left the procedure goes on in the wrong child; pushing on along it at a third of the speed
   // makes no progress along the course, and the stall comes after 24 mm of wire pushed in: three times the

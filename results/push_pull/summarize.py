@@ -5,7 +5,9 @@ results.json: the push/pull actor (act/2) with --recovery 3 on the coronary-like
 run (a cost of time in the reward, started from the shipped rotation actor); time_cost_1/results.json: the same
 run with the time cost raised to 1 a step (2026-12-03); since_progress_training/results.json: the second run's
 command with observation obs/7 (--since-progress, 2026-12-03) on the training anatomies (its coronary rows' run was
-not finished); scripted/results.json: the scripted rule with the
+not finished); aim_change_train/, aim_change/, aim_change_every_row/: the second run's command with the aim paid by
+its change (--reward-aim change, 2026-12-03) on the training anatomies, the coronary rows and the other rows;
+scripted/results.json: the scripted rule with the
 recovery wrapper (--recovery 3) on the same episodes, re-run at this commit; ../recovery/: the shipped
 rotation-only SAC with the wrapper (same episodes, seeds 0-24); every_row/results.json: the time-cost actor
 (the one that ships) and the scripted rule with the wrapper on the table's other eight rows.
@@ -54,6 +56,10 @@ runs = {"push/pull SAC (act/2)": (load("results.json"), "sac-policy"),
         "push/pull SAC (act/2), time cost 1 (= the wrong-branch cost)": (load("time_cost_1", "results.json"), "sac-policy"),
         "push/pull SAC (act/2), obs/7 (since_progress), time cost": (load("since_progress_training", "results.json"),
                                                                      "sac-policy"),
+        "push/pull SAC (act/2), aim paid by its change, time cost": (load("aim_change_train", "results.json") |
+                                                                     load("aim_change", "results.json") |
+                                                                     load("aim_change_every_row", "results.json"),
+                                                                     "sac-policy"),
         "scripted omega + wrapper": (load("scripted", "results.json") | load("every_row", "results.json"),
                                      "scripted-omega"),
         "shipped SAC (act/1) + wrapper": (load("..", "recovery", "results.json") | load("..", "recovery", "deformed",
@@ -88,6 +94,10 @@ pairs = [("push/pull SAC (act/2)", True, "scripted omega + wrapper", True),
          ("push/pull SAC (act/2), obs/7 (since_progress), time cost", True, "scripted omega + wrapper", True),
          ("push/pull SAC (act/2), obs/7 (since_progress), time cost", True,
           "push/pull SAC (act/2), time cost, from the rotation actor", True),
+         ("push/pull SAC (act/2), aim paid by its change, time cost", True, "scripted omega + wrapper", True),
+         ("push/pull SAC (act/2), aim paid by its change, time cost", True,
+          "push/pull SAC (act/2), time cost, from the rotation actor", True),
+         ("push/pull SAC (act/2), aim paid by its change, time cost", True, "shipped SAC (act/1) + wrapper", True),
          ("push/pull SAC (act/2), time cost, from the rotation actor", True, "shipped SAC (act/1) + wrapper", True),
          ("push/pull SAC (act/2), time cost, from the rotation actor", False, "shipped SAC (act/1) + wrapper", False),
          ("push/pull SAC (act/2)", True, "shipped SAC (act/1) + wrapper", True),

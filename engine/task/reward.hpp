@@ -29,7 +29,8 @@ double navigation_reward(double omega, double lambda_ratio, double action, const
 // a time cost makes every step spent short of the target cost something (TaskConfig::reward_time_per_step).
 //
 // How the act/2 reward pays for the aim (TaskConfig::reward_aim):
-//   kByDepth   the orientation term times new depth, as above (the push/pull actors trained before 2026-12-03)
+//   kByDepth   the orientation term times new depth, as above (every push/pull run before the one shipped on
+//              2026-12-03 afternoon)
 //   kByChange  the orientation term's change over the step, O(omega) - O(omega_before), paid whatever the wire
 //              does; only the progress term is weighted by new depth. Why: weighted by new depth, the orientation
 //              term makes every push while omega is above the sigmoid's centre cost up to 1, where stopping costs

@@ -131,8 +131,8 @@ struct TaskConfig {
   // ... and less this every env step (a cost of time; 0 = the first push/pull run's reward; the shipped
   // push/pull actor was trained with 0.25). Without it stopping is free (reward.hpp says why that matters).
   double reward_time_per_step = 0.0;
-  // ... and how it pays for the aim: the orientation term times new depth (kByDepth, the push/pull actors trained
-  // before 2026-12-03) or its change over each step (kByChange; reward.hpp says why).
+  // ... and how it pays for the aim: the orientation term times new depth (kByDepth, every push/pull run before the
+  // shipped one) or its change over each step (kByChange, the shipped push/pull actor's; reward.hpp says why).
   RewardAim reward_aim = RewardAim::kByDepth;
   // --- Force penalty (issue 37 item 4; 0 = the paper's reward, Eq. 3) ---
   // Each env step's reward loses this times the step's peak total wall force in newtons (StepInfo::

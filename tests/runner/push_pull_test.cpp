@@ -144,7 +144,7 @@ TEST_CASE("push/pull: a time cost comes off every step, stopped or moving, and n
   CHECK_THROWS_WITH(gw::check_task_config(costly.config), Catch::Contains("reward_time_per_step"));
 }
 
-TEST_CASE("push/pull: the aim paid by its change over the step, whatever the wire does; by new depth by default",
+TEST_CASE("push/pull: the aim paid by its change over the step, whatever the wire does, and by new depth by default",
           "[runner][push_pull]") {
   gw::NavigationTask depth = t1_task(true, 0), change = t1_task(true, 0);
   CHECK(depth.config.reward_aim == gw::RewardAim::kByDepth);

@@ -223,7 +223,7 @@ TEST_CASE("run_batch: threads give the same episodes as one thread, and the summ
   CHECK(summary["results"][2]["steps"] == 25);
 }
 
-TEST_CASE("a step time limit ends the episode at the first step past it as a timeout naming the limit; none is the default",
+TEST_CASE("a step time limit ends the episode at the first step past it as a timeout naming the limit, and none is the default",
           "[runner]") {
   const ShortT1 t1;
   gw::TraceOptions options;

@@ -91,6 +91,11 @@ int main(int argc, char** argv) {
                  "pull back and retry after a wrong branch or a stall, at most K times (docs/recovery.md); the strict "
                  "columns are the same episodes' first end, the \"with recovery\" figures the whole procedure's")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--reshape-tip", o.reshape_tip_per_mm,
+                 "when a procedure does not reach the target (with --recovery: after its pull-backs), withdraw the wire, "
+                 "reshape its tip to this curvature (1/mm; the wire's own is 0.2) and navigate again from the inlet "
+                 "(docs/recovery.md); the \"with reshape\" figures. 0 = never")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--step-time-limit", o.step_time_limit_s, "end an episode as a timeout when one env step runs longer than this many seconds of wall time (0 = no limit, the default: with a limit an outcome can depend on the machine's load; for surfaces where the contact solver crawls)")
       ->check(CLI::NonNegativeNumber);
   std::string junctions = "separate";

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <thread>
 #include <unistd.h>
 
@@ -72,6 +73,23 @@ int main(int argc, char** argv) {
                  "actor, act/2, pulls back itself); the outcome stays the strict episode's, the procedure's is under "
                  "\"recovery\"")
       ->check(CLI::NonNegativeNumber);
+  double recovery_retract_mm = gw::TaskConfig{}.recovery_retract_mm;
+  app.add_option("--recovery-retract", recovery_retract_mm,
+                 "with --recovery: pull the tip back to this many mm before the centre of the bifurcation it was lost at")
+      ->check(CLI::Range(0.0, 200.0));
+  double recovery_turn_deg = gw::TaskConfig{}.recovery_turn_rad * 180.0 / 3.14159265358979323846;
+  app.add_option("--recovery-turn", recovery_turn_deg,
+                 "with --recovery: pull-back k turns the proximal end by k times this many degrees")
+      ->check(CLI::Range(0.0, 360.0));
+  double recovery_pull = gw::TaskConfig{}.recovery_pull_mm_per_s;
+  app.add_option("--recovery-pull-speed", recovery_pull, "with --recovery: the pull-back speed, mm/s")
+      ->check(CLI::PositiveNumber);
+  double reshape_tip = 0.0;
+  app.add_option("--reshape-tip", reshape_tip,
+                 "when the procedure does not reach the target (with --recovery: after its pull-backs), withdraw the wire, "
+                 "reshape its tip to this curvature (1/mm; the wire's own is 0.2) and navigate again from the inlet "
+                 "(docs/recovery.md); the figures under \"reshape\". 0 = never")
+      ->check(CLI::NonNegativeNumber);
   double step_time_limit = 0.0;
   app.add_option("--step-time-limit", step_time_limit, "end an episode as a timeout when one env step runs longer than this many seconds of wall time (0 = no limit, the default: with a limit an outcome can depend on the machine's load; for surfaces where the contact solver crawls)")
       ->check(CLI::NonNegativeNumber);
@@ -131,6 +149,9 @@ int main(int argc, char** argv) {
     config.intermediate_target_mm = intermediate_target_mm;
     config.push_mm_per_s = push_mm_per_s;  // make_navigation_task refuses a speed that is not > 0
     config.recovery_attempts = recovery;
+    config.recovery_retract_mm = recovery_retract_mm;
+    config.recovery_turn_rad = recovery_turn_deg * 3.14159265358979323846 / 180.0;
+    config.recovery_pull_mm_per_s = recovery_pull;
 
     const gw::WireParams wire = wire_path.empty() ? gw::default_wire_params() : gw::load_wire_params(wire_path);
     gw::Anatomy anatomy = nav.anatomy;
@@ -149,6 +170,11 @@ int main(int argc, char** argv) {
     };
     gw::TraceOptions trace;
     trace.step_time_limit_s = step_time_limit;
+    std::optional<gw::NavigationTask> reshaped;
+    if (reshape_tip > 0) {
+      reshaped = gw::make_reshaped_task(task, reshape_tip);
+      trace.reshaped = &*reshaped;
+    }
     trace.wire_shape_every = out_dir.empty() ? 0 : gw::wire_shape_stride(anatomy.scene.get(), config.dt_s * config.frame_skip);
     const std::vector<gw::EpisodeTrace> traces = gw::run_batch(task, requests, make_controller, threads, trace, progress);
     if (show_progress) std::fprintf(stderr, "\n");
@@ -170,6 +196,7 @@ int main(int argc, char** argv) {
     summary["push_mm_per_s"] = push_mm_per_s;
     summary["task_scale"] = task.courses.at(0).at(0).vessel_scale ? "vessel" : "fixed";  // --task-scale, resolved
     if (recovery > 0) summary["recovery_attempts"] = recovery;
+    if (reshape_tip > 0) summary["reshape_tip_per_mm"] = reshape_tip;
     if (step_time_limit > 0) summary["step_time_limit_s"] = step_time_limit;
     if (config.action != gw::ActionLayout::kRotation) summary["action_layout"] = gw::action_layout_name(config.action);
     if (!motion_source.empty())
@@ -201,6 +228,11 @@ int main(int argc, char** argv) {
         if (t.recovery_attempts_allowed > 0)
           std::cout << "; with recovery -> " << t.recovery_outcome << " after " << t.recovery_attempts_used
                     << " pull-back(s), " << t.time_s.back() << " s simulated";
+        if (!t.reshaped.empty()) {
+          const nlohmann::json& r = summary["results"][k]["reshape"];
+          std::cout << "; tip reshaped to " << t.reshape_tip_per_mm << "/mm -> " << r["outcome"].get<std::string>()
+                    << ", " << r["procedure_time_s"].get<double>() << " s simulated in all";
+        }
         std::cout << "\n";
       }
       std::cout << summary["successes"].get<int>() << "/" << traces.size() << " reached the target ("

@@ -61,6 +61,14 @@ struct EpisodeTrace {
   std::string recovery_detail;
   std::vector<bool> retracting;       // optional, per frame: the env step that led to it pulled the wire back
   std::vector<double> insertion;      // optional, per frame: the insertion action (act/2 tasks), in [-1, 1]
+
+  // Tip reshape (TraceOptions::reshaped, docs/recovery.md). reshape_tip_per_mm > 0: the procedure could go on
+  // with the tip reshaped to this curvature; `reshaped` then holds the second pass (one trace, from the inlet,
+  // same seed) when the first did not reach the target, else nothing. reshape_withdrawal_s: the simulated
+  // time to pull the wire out after the first pass (its inserted length at the recovery pull speed).
+  double reshape_tip_per_mm = 0.0;
+  double reshape_withdrawal_s = 0.0;
+  std::vector<EpisodeTrace> reshaped;
 };
 
 // The frame the strict episode ended at (strict_end_frame, or the last frame; 0 for an empty trace).

@@ -129,12 +129,63 @@ nlohmann::json force_summary(const std::vector<nlohmann::json>& forces) {
 
 }  // namespace
 
+namespace {
+
+// The end of a pass: with recovery the procedure's, else the strict episode's.
+const std::string& pass_outcome(const EpisodeTrace& t) {
+  return t.recovery_attempts_allowed > 0 ? t.recovery_outcome : t.outcome;
+}
+
+// Over the frames of two passes: the largest peaks, and the mean total weighted by the env steps of each.
+nlohmann::json joined_force(const nlohmann::json& a, int a_steps, const nlohmann::json& b, int b_steps) {
+  if (a.empty() || b.empty()) return a.empty() ? b : a;
+  nlohmann::json f;
+  for (const char* k : {"peak_node_N", "peak_total_N", "peak_tip_N"}) f[k] = std::max(a[k].get<double>(), b[k].get<double>());
+  const int n = std::max(1, a_steps + b_steps);
+  f["mean_total_N"] = (a["mean_total_N"].get<double>() * a_steps + b["mean_total_N"].get<double>() * b_steps) / n;
+  return f;
+}
+
+// A result's "reshape" entry: the whole procedure, the reshaped second pass included when there was one.
+nlohmann::json reshape_result(const EpisodeTrace& t) {
+  const int first_steps = static_cast<int>(t.time_s.size()) - 1;
+  const double first_time = t.time_s.empty() ? 0.0 : t.time_s.back();
+  nlohmann::json r = {{"tip_curvature_per_mm", t.reshape_tip_per_mm},
+                      {"reshaped", !t.reshaped.empty()},
+                      {"outcome", pass_outcome(t)},
+                      {"detail", t.recovery_attempts_allowed > 0 ? t.recovery_detail : t.detail},
+                      {"attempts", t.recovery_attempts_used},
+                      {"steps", first_steps},
+                      {"procedure_time_s", first_time}};
+  nlohmann::json force = episode_force(t, 0, first_steps);
+  if (!t.reshaped.empty()) {
+    const EpisodeTrace& second = t.reshaped.front();
+    const int second_steps = static_cast<int>(second.time_s.size()) - 1;
+    r["outcome"] = pass_outcome(second);
+    r["detail"] = second.recovery_attempts_allowed > 0 ? second.recovery_detail : second.detail;
+    r["attempts"] = t.recovery_attempts_used + second.recovery_attempts_used;
+    r["steps"] = first_steps + second_steps;
+    r["withdrawal_s"] = t.reshape_withdrawal_s;
+    r["procedure_time_s"] = first_time + t.reshape_withdrawal_s + (second.time_s.empty() ? 0.0 : second.time_s.back());
+    force = joined_force(force, first_steps, episode_force(second, 0, second_steps), second_steps);
+  }
+  if (!force.empty()) r["force"] = force;
+  return r;
+}
+
+}  // namespace
+
 nlohmann::json summarize_results(const nlohmann::json& results) {
   nlohmann::json outcomes = nlohmann::json::object(), recovered_outcomes = nlohmann::json::object();
   for (const std::string& o : kTraceOutcomes) outcomes[o] = recovered_outcomes[o] = 0;
   std::vector<nlohmann::json> forces, recovered_forces;
   int successes = 0, recovered = 0, with_recovery = 0, attempts_allowed = 0, attempts = 0;
   double procedure_time = 0;
+  nlohmann::json reshape_outcomes = nlohmann::json::object();
+  for (const std::string& o : kTraceOutcomes) reshape_outcomes[o] = 0;
+  std::vector<nlohmann::json> reshape_forces;
+  int with_reshape = 0, reshape_successes = 0, reshaped = 0;
+  double reshape_time = 0, reshape_curvature = 0;
   for (const nlohmann::json& ep : results) {
     const std::string outcome = ep.at("outcome").get<std::string>();
     successes += outcome == "success";
@@ -149,6 +200,17 @@ nlohmann::json summarize_results(const nlohmann::json& results) {
       attempts += r.at("attempts").get<int>();
       procedure_time += r.at("procedure_time_s").get<double>();
       recovered_forces.push_back(r.value("force", nlohmann::json::object()));
+    }
+    if (ep.contains("reshape")) {
+      const nlohmann::json& r = ep["reshape"];
+      ++with_reshape;
+      reshape_curvature = r.at("tip_curvature_per_mm").get<double>();
+      reshape_successes += r.at("outcome") == "success";
+      reshaped += r.at("reshaped").get<bool>();
+      const std::string o = r.at("outcome").get<std::string>();
+      reshape_outcomes[o] = reshape_outcomes.value(o, 0) + 1;
+      reshape_time += r.at("procedure_time_s").get<double>();
+      reshape_forces.push_back(r.value("force", nlohmann::json::object()));
     }
   }
   const int n = static_cast<int>(results.size());
@@ -169,6 +231,17 @@ nlohmann::json summarize_results(const nlohmann::json& results) {
                        {"mean_procedure_time_s", procedure_time / with_recovery}};
     const nlohmann::json rf = force_summary(recovered_forces);
     if (!rf.empty()) out["recovery"]["force"] = rf;
+  }
+  if (with_reshape > 0) {
+    out["reshape"] = {{"tip_curvature_per_mm", reshape_curvature},
+                      {"episodes", with_reshape},
+                      {"successes", reshape_successes},
+                      {"success_rate", static_cast<double>(reshape_successes) / with_reshape},
+                      {"outcomes", reshape_outcomes},
+                      {"reshaped", reshaped},
+                      {"mean_procedure_time_s", reshape_time / with_reshape}};
+    const nlohmann::json sf = force_summary(reshape_forces);
+    if (!sf.empty()) out["reshape"]["force"] = sf;
   }
   return out;
 }
@@ -202,6 +275,7 @@ nlohmann::json summarize_episodes(const std::vector<EpisodeTrace>& traces) {
       if (!whole.empty()) r["force"] = whole;
       results.back()["recovery"] = r;
     }
+    if (t.reshape_tip_per_mm > 0) results.back()["reshape"] = reshape_result(t);
   }
   return summarize_results(results);
 }

@@ -195,6 +195,7 @@ nlohmann::json evaluation_settings(const EvaluationOptions& o) {
   if (o.recovery_attempts > 0) settings["recovery_attempts"] = o.recovery_attempts;
   if (o.junctions != JunctionModel::kSeparate) settings["junctions"] = junction_model_name(o.junctions);
   if (o.step_time_limit_s > 0) settings["step_time_limit_s"] = o.step_time_limit_s;
+  if (o.reshape_tip_per_mm > 0) settings["reshape_tip_per_mm"] = o.reshape_tip_per_mm;
   if (o.episode_count >= 0) settings["episodes"] = {o.first_episode, o.episode_count};  // a shard (issue 40)
   return settings;
 }
@@ -299,9 +300,16 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
             config.action != default_task.config.action || config.recovery_attempts > 0)
           adapted = make_navigation_task(config, wire, anatomies);
         const NavigationTask& task = adapted ? *adapted : default_task;
+        std::optional<NavigationTask> reshaped;  // the controllers' columns only, as recovery
+        TraceOptions column_trace = trace;
+        if (o.reshape_tip_per_mm > 0) {
+          reshaped = make_reshaped_task(task, o.reshape_tip_per_mm);
+          column_trace.reshaped = &*reshaped;
+        }
         const std::string where = label + ", " + kind + ": ";
         auto progress = [&](int done, int of) { meter.episode_done(where + std::to_string(done) + "/" + std::to_string(of)); };
-        const nlohmann::json summary = summarize_episodes(run_batch(task, requests, make, o.threads, trace, progress));
+        const nlohmann::json summary =
+            summarize_episodes(run_batch(task, requests, make, o.threads, column_trace, progress));
         const std::string column = kind == "policy" ? "sac-policy" : kind;
         r["results"][column] = summary;
       }
@@ -545,12 +553,13 @@ std::string failure_modes(const nlohmann::json& summary, const std::set<std::str
 // no column carries either (results.json files written before them).
 std::string safety_and_recovery_table(const nlohmann::json& e) {
   std::ostringstream md;
-  bool any = false, recovery = false;
+  bool any = false, recovery = false, reshape = false;
   for (const nlohmann::json& r : e["rows"])
     if (r.contains("results"))
       for (const auto& [column, summary] : r["results"].items()) {
-        any = any || summary.contains("force") || summary.contains("recovery");
+        any = any || summary.contains("force") || summary.contains("recovery") || summary.contains("reshape");
         recovery = recovery || summary.contains("recovery");
+        reshape = reshape || summary.contains("reshape");
       }
   if (!any) return "";
   auto fixed = [](double v, int digits) {
@@ -570,9 +579,15 @@ std::string safety_and_recovery_table(const nlohmann::json& e) {
     md << " With recovery: the same episodes go on after the strict end (first wrong branch or stall): the "
           "wire is pulled back before the bifurcation and advanced again, at most K times; attempts and "
           "procedure time (simulated) are means over the episodes, force over the whole procedure.";
+  if (reshape)
+    md << " With reshape: a procedure that still did not reach the target is withdrawn, the wire's tip reshaped "
+          "to the curvature given, and navigated again from the inlet (with the same recovery); reshaped: episodes "
+          "that needed the second pass; procedure time: both passes and the withdrawal between them.";
   md << "\n\n| case | column | strict success | peak node force (N) | peak total (N) | > 1.5 N |";
   if (recovery) md << " with recovery | K | attempts | procedure time (s) | peak node (N) | peak total (N) | > 1.5 N |";
-  md << "\n|---|---|---|---|---|---|" << (recovery ? "---|---|---|---|---|---|---|" : "") << "\n";
+  if (reshape) md << " with reshape | tip (1/mm) | reshaped | procedure time (s) | peak node (N) | > 1.5 N |";
+  md << "\n|---|---|---|---|---|---|" << (recovery ? "---|---|---|---|---|---|---|" : "")
+     << (reshape ? "---|---|---|---|---|---|" : "") << "\n";
   for (const nlohmann::json& r : e["rows"]) {
     if (!r.contains("results")) continue;
     for (const auto& [column, summary] : r["results"].items()) {
@@ -588,6 +603,21 @@ std::string safety_and_recovery_table(const nlohmann::json& e) {
              << rec["attempts_allowed"].get<int>() << " | " << fixed(rec["mean_attempts"].get<double>(), 2) << " | "
              << fixed(rec["mean_procedure_time_s"].get<double>(), 1) << " | "
              << force_cells(rec.value("force", nlohmann::json::object())) << " |";
+        }
+      }
+      if (reshape) {
+        if (!summary.contains("reshape")) {
+          md << " — | — | — | — | — | — |";
+        } else {
+          const nlohmann::json& sh = summary["reshape"];
+          const nlohmann::json f = sh.value("force", nlohmann::json::object());
+          md << " " << share(sh["successes"].get<int>(), sh["episodes"].get<int>()) << " | "
+             << sh["tip_curvature_per_mm"].get<double>() << " | " << sh["reshaped"].get<int>() << " | "
+             << fixed(sh["mean_procedure_time_s"].get<double>(), 1) << " | "
+             << (f.contains("mean_peak_node_N") ? fixed(f["mean_peak_node_N"].get<double>(), 2) + " | " +
+                                                      fixed(100.0 * f["share_peak_node_over_1_5N"].get<double>(), 0) + "%"
+                                                : std::string("— | —"))
+             << " |";
         }
       }
       md << "\n";

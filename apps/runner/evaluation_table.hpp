@@ -57,6 +57,8 @@ struct EvaluationOptions {
   int recovery_attempts = 0;  // --recovery K (task_config.hpp): the columns also report the procedure with recovery
   JunctionModel junctions = JunctionModel::kSeparate;  // --junctions (task_config.hpp; issue 41)
   double step_time_limit_s = 0.0;  // --step-time-limit (run_episode.hpp, TraceOptions; 0 = none)
+  double reshape_tip_per_mm = 0.0;  // --reshape-tip C (run_episode.hpp, TraceOptions::reshaped; 0 = never): the
+                                    // columns also report the procedure with a reshaped second pass ("reshape")
   // evaluate --episodes FIRST:COUNT (issue 40): run only episodes FIRST .. FIRST+COUNT-1 of each row (a
   // shard; the rest of the row's episodes are drawn as ever, so a shard's episodes are the whole run's).
   // Recorded in the settings as "episodes": [FIRST, COUNT]; count < 0: every episode (not recorded).

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "engine/task/observation.hpp"
@@ -54,10 +56,10 @@ void set_outcome(const StepInfo& i, std::string& outcome, std::string& detail) {
   }
 }
 
-}  // namespace
-
-EpisodeTrace run_episode(const NavigationTask& task, int anatomy, int target_id, std::uint64_t seed,
-                         Controller& controller, const TraceOptions& options) {
+// One pass from the inlet: reset -> (observe -> act -> step) until the task ends it; the wire's inserted
+// length at the end goes to `inserted_mm` (what a tip reshape has to withdraw).
+EpisodeTrace run_pass(const NavigationTask& task, int anatomy, int target_id, std::uint64_t seed,
+                      Controller& controller, const TraceOptions& options, double& inserted_mm) {
   EpisodeState s = reset_episode(task, anatomy, target_id, seed);
   controller.begin_episode();
   EpisodeTrace trace;
@@ -107,7 +109,36 @@ EpisodeTrace run_episode(const NavigationTask& task, int anatomy, int target_id,
     trace.wire_shapes.push_back(inserted_node_positions(task.wire, s.wire));
     trace.wire_shape_frame.push_back(frame);
   }
+  inserted_mm = s.wire.inserted_length_mm;
   return trace;
+}
+
+}  // namespace
+
+EpisodeTrace run_episode(const NavigationTask& task, int anatomy, int target_id, std::uint64_t seed,
+                         Controller& controller, const TraceOptions& options) {
+  double inserted_mm = 0.0;
+  EpisodeTrace trace = run_pass(task, anatomy, target_id, seed, controller, options, inserted_mm);
+  if (!options.reshaped) return trace;
+  // Tip reshape: a procedure that ended short of the target (a physics failure is not a procedure's end)
+  // is withdrawn at the recovery pull speed and navigated again with the reshaped tip.
+  trace.reshape_tip_per_mm = options.reshaped->wire.params.tip_curvature_per_mm;
+  const std::string& end = trace.recovery_attempts_allowed > 0 ? trace.recovery_outcome : trace.outcome;
+  if (end == "success" || end == "diverged") return trace;
+  trace.reshape_withdrawal_s =
+      std::max(0.0, inserted_mm - task.config.initial_insertion_mm) / task.config.recovery_pull_mm_per_s;
+  double unused = 0.0;
+  trace.reshaped.push_back(run_pass(*options.reshaped, anatomy, target_id, seed, controller, options, unused));
+  return trace;
+}
+
+NavigationTask make_reshaped_task(const NavigationTask& task, double tip_curvature_per_mm) {
+  if (!(tip_curvature_per_mm > 0) || !std::isfinite(tip_curvature_per_mm))
+    throw std::invalid_argument("tip reshape: the curvature must be a number above 0 (1/mm), got " +
+                                std::to_string(tip_curvature_per_mm));
+  WireParams wire = task.wire.params;
+  wire.tip_curvature_per_mm = tip_curvature_per_mm;
+  return make_navigation_task(task.config, wire, task.anatomies);
 }
 
 }  // namespace gw

@@ -17,6 +17,12 @@ struct TraceOptions {
   // An env step that runs longer than this on the wall clock ends the episode as a "timeout" naming the limit
   // (StepLimits, episode.hpp); 0 = none. Off by default: with it, an outcome can depend on the machine's load.
   double step_time_limit_s = 0.0;
+  // Tip reshape (docs/recovery.md): when set, a procedure that does not reach the target (with recovery: its
+  // end after the pull-backs; without: the strict episode) goes on as a clinician's would: the wire is withdrawn,
+  // its tip reshaped, and it is navigated again from the inlet with the same seed and controller. This task is
+  // the second pass's: the first pass's anatomies and settings with the reshaped wire
+  // (make_reshaped_task). The second pass is EpisodeTrace::reshaped; the first is recorded as without it.
+  const NavigationTask* reshaped = nullptr;
 };
 
 // Runs target `target_id` of anatomy `anatomy` (indices into task.anatomies) from `seed` to its end.
@@ -24,5 +30,10 @@ struct TraceOptions {
 // (which goal was missed, the physics problem). Throws std::invalid_argument for a bad anatomy/target.
 EpisodeTrace run_episode(const NavigationTask& task, int anatomy, int target_id, std::uint64_t seed,
                          Controller& controller, const TraceOptions& options = {});
+
+// Inputs: a task and a tip curvature (1/mm). Output: the same anatomies and settings with the wire's tip
+// reshaped to that curvature (its length unchanged), for TraceOptions::reshaped. Throws
+// std::invalid_argument unless the curvature is a finite number above 0.
+NavigationTask make_reshaped_task(const NavigationTask& task, double tip_curvature_per_mm);
 
 }  // namespace gw

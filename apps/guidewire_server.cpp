@@ -65,6 +65,11 @@ int main(int argc, char** argv) {
   app.add_option("--reward-time", config.reward_time_per_step,
                  "--push-pull: reward lost every env step, a cost of time (0: stopping is free; engine/task/reward.hpp)")
       ->capture_default_str();
+  app.add_option("--reward-force", config.reward_force_per_N,
+                 "reward lost per newton of the env step's peak total wall force (0: the paper's reward; any action "
+                 "layout; docs/recovery.md)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   std::string reward_aim = gw::reward_aim_name(config.reward_aim);
   app.add_option("--reward-aim", reward_aim,
                  "--push-pull: the orientation term times the step's new depth (depth) or its change over the step "

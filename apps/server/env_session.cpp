@@ -39,7 +39,10 @@ json info_json(const NavigationTask& task, const EpisodeState& s, const StepInfo
             {"tip_to_target_mm", i.tip_to_target_mm},
             {"progress_mm", i.progress_mm},
             {"inserted_mm", i.inserted_mm},
-            {"contacts", i.contacts}};
+            {"contacts", i.contacts},
+            {"wall_force_peak_node_mN", i.wall_force_peak_node_mN},
+            {"wall_force_peak_total_mN", i.wall_force_peak_total_mN},
+            {"tip_force_mN", i.tip_force_mN}};
   if (!i.problem.empty()) j["problem"] = i.problem;
   if (task.config.recovery_attempts > 0) {  // the procedure goes on past the strict end (docs/recovery.md)
     j["strict_end"] = i.strict_end;
@@ -113,6 +116,7 @@ std::string spec_json(const NavigationTask& task) {
               {"recovery_attempts", c.recovery_attempts},
               {"reward_wrong_branch", c.reward_wrong_branch},
               {"reward_time_per_step", c.reward_time_per_step},
+              {"reward_force_per_N", c.reward_force_per_N},
               {"reward_aim", reward_aim_name(c.reward_aim)}}}};
   return j.dump();
 }

@@ -140,6 +140,32 @@ def test_omega_plane_is_chosen_at_the_server_and_reported(server_bin):
         paper.close()
 
 
+def test_force_cost_is_chosen_at_the_server_and_changes_only_the_reward(server_bin):
+    # Same seed, same actions: the observations agree, and the costed reward is lower by the coefficient times
+    # the step's peak total wall force (the info's wall_force_peak_total_mN), never higher.
+    plain = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1})
+    costly = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1}, server_args=["--reward-force", "2"])
+    try:
+        assert plain.spec_reply["task"]["reward_force_per_N"] == 0.0
+        assert costly.spec_reply["task"]["reward_force_per_N"] == 2.0
+        plain.reset(seed=2)
+        costly.reset(seed=2)
+        charged = 0
+        for _ in range(60):
+            a, ra, *_ = plain.step(np.array([0.3], dtype=np.float32))
+            b, rb, _, _, info = costly.step(np.array([0.3], dtype=np.float32))
+            assert np.array_equal(a, b)
+            force_n = 1e-3 * info["wall_force_peak_total_mN"]
+            assert rb == pytest.approx(ra - 2.0 * force_n, abs=1e-9)
+            charged += force_n > 0
+        assert charged > 0  # the wire touched the wall, so the cost was paid
+    finally:
+        plain.close()
+        costly.close()
+    with pytest.raises(Exception):
+        GuidewireEnv(anatomies="t1_straight_y", server_args=["--reward-force", "-1"])
+
+
 def test_reward_shape_is_chosen_at_the_server_and_changes_only_the_reward(server_bin):
     # Same seed, same actions: the observations agree, the rewards follow each server's sigmoid.
     paper = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1})

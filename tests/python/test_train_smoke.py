@@ -144,6 +144,9 @@ def test_fine_tuning_starts_from_the_given_networks(smoke_run, tmp_path):
     assert args[args.index("--random-start") + 1] == "0.5"
     pushed = train.server_args(train.Settings(push_speed=5.0))
     assert pushed[pushed.index("--push-speed") + 1] == "5.0"
+    costly = train.server_args(train.Settings(reward_force=0.2))
+    assert costly[costly.index("--reward-force") + 1] == "0.2"
+    assert "--reward-force" not in train.server_args(train.Settings())  # off: the server's default, the paper's
 
 
 def test_fine_tuning_from_an_exported_actor_keeps_it_while_the_critics_learn(smoke_run, tmp_path):

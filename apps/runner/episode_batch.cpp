@@ -127,10 +127,6 @@ nlohmann::json force_summary(const std::vector<nlohmann::json>& forces) {
           {"mean_mean_total_N", mean / n}};
 }
 
-}  // namespace
-
-namespace {
-
 // The end of a pass: with recovery the procedure's, else the strict episode's.
 const std::string& pass_outcome(const EpisodeTrace& t) {
   return t.recovery_attempts_allowed > 0 ? t.recovery_outcome : t.outcome;

@@ -7,6 +7,8 @@ run with the time cost raised to 1 a step (2026-12-03); since_progress_training/
 command with observation obs/7 (--since-progress, 2026-12-03) on the training anatomies (its coronary rows' run was
 not finished); aim_change_train/, aim_change/, aim_change_every_row/: the second run's command with the aim paid by
 its change (--reward-aim change, 2026-12-03) on the training anatomies, the coronary rows and the other rows;
+force_train/, force/: that command with a force cost (--reward-force 0.25, 2026-12-03 evening) on the training
+anatomies and the coronary rows;
 scripted/results.json: the scripted rule with the
 recovery wrapper (--recovery 3) on the same episodes, re-run at this commit; ../recovery/: the shipped
 rotation-only SAC with the wrapper (same episodes, seeds 0-24); every_row/results.json: the time-cost actor
@@ -60,6 +62,8 @@ runs = {"push/pull SAC (act/2)": (load("results.json"), "sac-policy"),
                                                                      load("aim_change", "results.json") |
                                                                      load("aim_change_every_row", "results.json"),
                                                                      "sac-policy"),
+        "push/pull SAC (act/2), aim paid by its change, force cost 0.25/N": (load("force_train", "results.json") |
+                                                                            load("force", "results.json"), "sac-policy"),
         "scripted omega + wrapper": (load("scripted", "results.json") | load("every_row", "results.json"),
                                      "scripted-omega"),
         "shipped SAC (act/1) + wrapper": (load("..", "recovery", "results.json") | load("..", "recovery", "deformed",
@@ -98,6 +102,9 @@ pairs = [("push/pull SAC (act/2)", True, "scripted omega + wrapper", True),
          ("push/pull SAC (act/2), aim paid by its change, time cost", True,
           "push/pull SAC (act/2), time cost, from the rotation actor", True),
          ("push/pull SAC (act/2), aim paid by its change, time cost", True, "shipped SAC (act/1) + wrapper", True),
+         ("push/pull SAC (act/2), aim paid by its change, force cost 0.25/N", True, "scripted omega + wrapper", True),
+         ("push/pull SAC (act/2), aim paid by its change, force cost 0.25/N", True,
+          "push/pull SAC (act/2), aim paid by its change, time cost", True),
          ("push/pull SAC (act/2), time cost, from the rotation actor", True, "shipped SAC (act/1) + wrapper", True),
          ("push/pull SAC (act/2), time cost, from the rotation actor", False, "shipped SAC (act/1) + wrapper", False),
          ("push/pull SAC (act/2)", True, "shipped SAC (act/1) + wrapper", True),

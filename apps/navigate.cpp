@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
   app.add_option("--recovery-retract", recovery_retract_mm,
                  "with --recovery: pull the tip back to this many mm before the centre of the bifurcation it was lost at")
       ->check(CLI::Range(0.0, 200.0));
-  double recovery_turn_deg = gw::TaskConfig{}.recovery_turn_rad * 180.0 / 3.14159265358979323846;
+  double recovery_turn_deg = gw::TaskConfig{}.recovery_turn_rad * 180.0 / EIGEN_PI;
   app.add_option("--recovery-turn", recovery_turn_deg,
                  "with --recovery: pull-back k turns the proximal end by k times this many degrees")
       ->check(CLI::Range(0.0, 360.0));
@@ -150,7 +150,7 @@ int main(int argc, char** argv) {
     config.push_mm_per_s = push_mm_per_s;  // make_navigation_task refuses a speed that is not > 0
     config.recovery_attempts = recovery;
     config.recovery_retract_mm = recovery_retract_mm;
-    config.recovery_turn_rad = recovery_turn_deg * 3.14159265358979323846 / 180.0;
+    config.recovery_turn_rad = recovery_turn_deg * EIGEN_PI / 180.0;
     config.recovery_pull_mm_per_s = recovery_pull;
 
     const gw::WireParams wire = wire_path.empty() ? gw::default_wire_params() : gw::load_wire_params(wire_path);

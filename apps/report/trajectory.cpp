@@ -59,4 +59,12 @@ int strict_end(const EpisodeTrace& t) {
   return t.time_s.empty() ? 0 : static_cast<int>(t.time_s.size()) - 1;
 }
 
+const std::string& procedure_outcome(const EpisodeTrace& t) {
+  return t.recovery_attempts_allowed > 0 ? t.recovery_outcome : t.outcome;
+}
+
+const std::string& procedure_detail(const EpisodeTrace& t) {
+  return t.recovery_attempts_allowed > 0 ? t.recovery_detail : t.detail;
+}
+
 }  // namespace gw

@@ -74,6 +74,11 @@ struct EpisodeTrace {
 // The frame the strict episode ended at (strict_end_frame, or the last frame; 0 for an empty trace).
 int strict_end(const EpisodeTrace& trace);
 
+// How the procedure ended: with recovery (recovery_attempts_allowed > 0) recovery_outcome/recovery_detail, else
+// the strict episode's outcome/detail.
+const std::string& procedure_outcome(const EpisodeTrace& trace);
+const std::string& procedure_detail(const EpisodeTrace& trace);
+
 // The outcomes a trace may carry (what navigate's summary counts).
 extern const std::vector<std::string> kTraceOutcomes;
 

@@ -127,11 +127,6 @@ nlohmann::json force_summary(const std::vector<nlohmann::json>& forces) {
           {"mean_mean_total_N", mean / n}};
 }
 
-// The end of a pass: with recovery the procedure's, else the strict episode's.
-const std::string& pass_outcome(const EpisodeTrace& t) {
-  return t.recovery_attempts_allowed > 0 ? t.recovery_outcome : t.outcome;
-}
-
 // Over the frames of two passes: the largest peaks, and the mean total weighted by the env steps of each.
 nlohmann::json joined_force(const nlohmann::json& a, int a_steps, const nlohmann::json& b, int b_steps) {
   if (a.empty() || b.empty()) return a.empty() ? b : a;
@@ -148,8 +143,8 @@ nlohmann::json reshape_result(const EpisodeTrace& t) {
   const double first_time = t.time_s.empty() ? 0.0 : t.time_s.back();
   nlohmann::json r = {{"tip_curvature_per_mm", t.reshape_tip_per_mm},
                       {"reshaped", !t.reshaped.empty()},
-                      {"outcome", pass_outcome(t)},
-                      {"detail", t.recovery_attempts_allowed > 0 ? t.recovery_detail : t.detail},
+                      {"outcome", procedure_outcome(t)},
+                      {"detail", procedure_detail(t)},
                       {"attempts", t.recovery_attempts_used},
                       {"steps", first_steps},
                       {"procedure_time_s", first_time}};
@@ -157,8 +152,8 @@ nlohmann::json reshape_result(const EpisodeTrace& t) {
   if (!t.reshaped.empty()) {
     const EpisodeTrace& second = t.reshaped.front();
     const int second_steps = static_cast<int>(second.time_s.size()) - 1;
-    r["outcome"] = pass_outcome(second);
-    r["detail"] = second.recovery_attempts_allowed > 0 ? second.recovery_detail : second.detail;
+    r["outcome"] = procedure_outcome(second);
+    r["detail"] = procedure_detail(second);
     r["attempts"] = t.recovery_attempts_used + second.recovery_attempts_used;
     r["steps"] = first_steps + second_steps;
     r["withdrawal_s"] = t.reshape_withdrawal_s;

@@ -123,7 +123,7 @@ EpisodeTrace run_episode(const NavigationTask& task, int anatomy, int target_id,
   // Tip reshape: a procedure that ended short of the target (a physics failure is not a procedure's end)
   // is withdrawn at the recovery pull speed and navigated again with the reshaped tip.
   trace.reshape_tip_per_mm = options.reshaped->wire.params.tip_curvature_per_mm;
-  const std::string& end = trace.recovery_attempts_allowed > 0 ? trace.recovery_outcome : trace.outcome;
+  const std::string& end = procedure_outcome(trace);
   if (end == "success" || end == "diverged") return trace;
   trace.reshape_withdrawal_s =
       std::max(0.0, inserted_mm - task.config.initial_insertion_mm) / task.config.recovery_pull_mm_per_s;

@@ -96,6 +96,10 @@ int main(int argc, char** argv) {
                  "reshape its tip to this curvature (1/mm; the wire's own is 0.2) and navigate again from the inlet "
                  "(docs/recovery.md); the \"with reshape\" figures. 0 = never")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--force-limit", o.force_limit_N,
+                 "withhold the forward push while the wire presses the wall harder than this many newtons at one node "
+                 "(the controllers' columns; 0 = off, the paper's task; docs/recovery.md \"Force limit\")")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--step-time-limit", o.step_time_limit_s, "end an episode as a timeout when one env step runs longer than this many seconds of wall time (0 = no limit, the default: with a limit an outcome can depend on the machine's load; for surfaces where the contact solver crawls)")
       ->check(CLI::NonNegativeNumber);
   std::string junctions = "separate";

@@ -70,6 +70,11 @@ int main(int argc, char** argv) {
                  "layout; docs/recovery.md)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--force-limit", config.force_limit_N,
+                 "withhold the forward push while the wire presses the wall harder than this many newtons at one node "
+                 "(0: off, the paper's task; any action layout; docs/recovery.md \"Force limit\")")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   std::string reward_aim = gw::reward_aim_name(config.reward_aim);
   app.add_option("--reward-aim", reward_aim,
                  "--push-pull: the orientation term times the step's new depth (depth) or its change over the step "

@@ -90,6 +90,11 @@ int main(int argc, char** argv) {
                  "reshape its tip to this curvature (1/mm; the wire's own is 0.2) and navigate again from the inlet "
                  "(docs/recovery.md); the figures under \"reshape\". 0 = never")
       ->check(CLI::NonNegativeNumber);
+  double force_limit = 0.0;
+  app.add_option("--force-limit", force_limit,
+                 "withhold the forward push while the wire presses the wall harder than this many newtons at one node "
+                 "(0 = off, the paper's task; docs/recovery.md \"Force limit\")")
+      ->check(CLI::NonNegativeNumber);
   double step_time_limit = 0.0;
   app.add_option("--step-time-limit", step_time_limit, "end an episode as a timeout when one env step runs longer than this many seconds of wall time (0 = no limit, the default: with a limit an outcome can depend on the machine's load; for surfaces where the contact solver crawls)")
       ->check(CLI::NonNegativeNumber);
@@ -152,6 +157,7 @@ int main(int argc, char** argv) {
     config.recovery_retract_mm = recovery_retract_mm;
     config.recovery_turn_rad = recovery_turn_deg * EIGEN_PI / 180.0;
     config.recovery_pull_mm_per_s = recovery_pull;
+    config.force_limit_N = force_limit;
 
     const gw::WireParams wire = wire_path.empty() ? gw::default_wire_params() : gw::load_wire_params(wire_path);
     gw::Anatomy anatomy = nav.anatomy;

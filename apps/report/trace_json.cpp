@@ -76,6 +76,7 @@ std::string trace_to_json(const EpisodeTrace& t, int indent) {
   per_frame("wall_force_mean_total_mN", t.wall_force_mean_total_mN);
   per_frame("tip_force_mN", t.tip_force_mN);
   per_frame("insertion", t.insertion);
+  per_frame("push_held_s", t.push_held_s);
   if (!t.retracting.empty()) {
     frames["retracting"] = json::array();
     for (bool r : t.retracting) frames["retracting"].push_back(r);
@@ -163,6 +164,7 @@ EpisodeTrace trace_from_json(const std::string& text, const std::string& origin)
     read_per_frame("wall_force_mean_total_mN", t.wall_force_mean_total_mN);
     read_per_frame("tip_force_mN", t.tip_force_mN);
     read_per_frame("insertion", t.insertion);
+    read_per_frame("push_held_s", t.push_held_s);
     if (frames.contains("retracting"))
       for (const auto& v : array_field(frames, "retracting")) t.retracting.push_back(v.get<bool>());
     if (j.contains("strict_end_frame")) t.strict_end_frame = j["strict_end_frame"].get<int>();

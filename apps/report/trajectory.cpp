@@ -31,6 +31,7 @@ void check_trace(const EpisodeTrace& t, const std::string& what) {
   if (!t.tip_force_mN.empty()) same(t.tip_force_mN.size(), "tip_force_mN");
   if (!t.retracting.empty()) same(t.retracting.size(), "retracting");
   if (!t.insertion.empty()) same(t.insertion.size(), "insertion");
+  if (!t.push_held_s.empty()) same(t.push_held_s.size(), "push_held_s");
   if (t.strict_end_frame < -1 || (t.strict_end_frame >= 0 && static_cast<std::size_t>(t.strict_end_frame) >= n))
     fail("strict_end_frame " + std::to_string(t.strict_end_frame) + " is outside -1.." + std::to_string(n) + "-1");
   if (t.recovery_attempts_allowed < 0 || t.recovery_attempts_used < 0)

@@ -61,6 +61,8 @@ struct EpisodeTrace {
   std::string recovery_detail;
   std::vector<bool> retracting;       // optional, per frame: the env step that led to it pulled the wire back
   std::vector<double> insertion;      // optional, per frame: the insertion action (act/2 tasks), in [-1, 1]
+  std::vector<double> push_held_s;    // optional, per frame: simulated time of the env step whose forward push the
+                                      // force limit withheld (TaskConfig::force_limit_N; recorded only when it is on)
 
   // Tip reshape (TraceOptions::reshaped, docs/recovery.md). reshape_tip_per_mm > 0: the procedure could go on
   // with the tip reshaped to this curvature; `reshaped` then holds the second pass (one trace, from the inlet,

@@ -103,13 +103,19 @@ namespace {
 
 // Over the episodes' force figures (episode_force) under `key` of each result (or of its "recovery"):
 // {"episodes" with a figure, "mean_peak_node_N", "share_peak_node_over_1_5N", "mean_peak_total_N",
-// "share_peak_total_over_1_5N", "mean_peak_tip_N", "mean_mean_total_N"}; {} when none has one.
+// "share_peak_total_over_1_5N", "mean_peak_tip_N", "mean_mean_total_N"}, with a force limit "mean_push_held_s";
+// {} when none has one.
 nlohmann::json force_summary(const std::vector<nlohmann::json>& forces) {
   int n = 0, node_over = 0, total_over = 0;
-  double node = 0, total = 0, tip = 0, mean = 0;
+  int held_n = 0;
+  double node = 0, total = 0, tip = 0, mean = 0, held = 0;
   for (const nlohmann::json& f : forces) {
     if (!f.contains("peak_node_N")) continue;
     ++n;
+    if (f.contains("push_held_s")) {
+      ++held_n;
+      held += f["push_held_s"].get<double>();
+    }
     node += f["peak_node_N"].get<double>();
     total += f["peak_total_N"].get<double>();
     tip += f["peak_tip_N"].get<double>();
@@ -118,13 +124,15 @@ nlohmann::json force_summary(const std::vector<nlohmann::json>& forces) {
     total_over += f["peak_total_N"].get<double>() > kRuptureForceN;
   }
   if (n == 0) return nlohmann::json::object();
-  return {{"episodes", n},
-          {"mean_peak_node_N", node / n},
-          {"share_peak_node_over_1_5N", static_cast<double>(node_over) / n},
-          {"mean_peak_total_N", total / n},
-          {"share_peak_total_over_1_5N", static_cast<double>(total_over) / n},
-          {"mean_peak_tip_N", tip / n},
-          {"mean_mean_total_N", mean / n}};
+  nlohmann::json out = {{"episodes", n},
+                        {"mean_peak_node_N", node / n},
+                        {"share_peak_node_over_1_5N", static_cast<double>(node_over) / n},
+                        {"mean_peak_total_N", total / n},
+                        {"share_peak_total_over_1_5N", static_cast<double>(total_over) / n},
+                        {"mean_peak_tip_N", tip / n},
+                        {"mean_mean_total_N", mean / n}};
+  if (held_n > 0) out["mean_push_held_s"] = held / held_n;
+  return out;
 }
 
 // Over the frames of two passes: the largest peaks, and the mean total weighted by the env steps of each.
@@ -134,6 +142,8 @@ nlohmann::json joined_force(const nlohmann::json& a, int a_steps, const nlohmann
   for (const char* k : {"peak_node_N", "peak_total_N", "peak_tip_N"}) f[k] = std::max(a[k].get<double>(), b[k].get<double>());
   const int n = std::max(1, a_steps + b_steps);
   f["mean_total_N"] = (a["mean_total_N"].get<double>() * a_steps + b["mean_total_N"].get<double>() * b_steps) / n;
+  if (a.contains("push_held_s") && b.contains("push_held_s"))
+    f["push_held_s"] = a["push_held_s"].get<double>() + b["push_held_s"].get<double>();
   return f;
 }
 

@@ -21,10 +21,16 @@ nlohmann::json episode_force(const EpisodeTrace& t, int first, int last) {
     tip = std::max(tip, t.tip_force_mN[i]);
     sum += t.wall_force_mean_total_mN[i];
   }
-  return {{"peak_node_N", 1e-3 * node},
-          {"peak_total_N", 1e-3 * total},
-          {"mean_total_N", 1e-3 * sum / (last - first)},
-          {"peak_tip_N", 1e-3 * tip}};
+  nlohmann::json out = {{"peak_node_N", 1e-3 * node},
+                        {"peak_total_N", 1e-3 * total},
+                        {"mean_total_N", 1e-3 * sum / (last - first)},
+                        {"peak_tip_N", 1e-3 * tip}};
+  if (t.push_held_s.size() == t.wall_force_peak_node_mN.size()) {
+    double held = 0;
+    for (int f = first + 1; f <= last; ++f) held += t.push_held_s[static_cast<std::size_t>(f)];
+    out["push_held_s"] = held;
+  }
+  return out;
 }
 
 }  // namespace gw

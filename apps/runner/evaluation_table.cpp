@@ -196,6 +196,7 @@ nlohmann::json evaluation_settings(const EvaluationOptions& o) {
   if (o.junctions != JunctionModel::kSeparate) settings["junctions"] = junction_model_name(o.junctions);
   if (o.step_time_limit_s > 0) settings["step_time_limit_s"] = o.step_time_limit_s;
   if (o.reshape_tip_per_mm > 0) settings["reshape_tip_per_mm"] = o.reshape_tip_per_mm;
+  if (o.force_limit_N > 0) settings["force_limit_N"] = o.force_limit_N;
   if (o.episode_count >= 0) settings["episodes"] = {o.first_episode, o.episode_count};  // a shard (issue 40)
   return settings;
 }
@@ -294,10 +295,11 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
         TaskConfig config = base_config;
         make()->adapt(config);  // an actor trained on the paper's omega (obs/1) is evaluated with it
         config.recovery_attempts = o.recovery_attempts;  // the controllers' columns only: probes stay strict
+        config.force_limit_N = o.force_limit_N;
         std::optional<NavigationTask> adapted;
         if (config.observation.omega_plane != default_task.config.observation.omega_plane ||
             config.observation.junctions != default_task.config.observation.junctions ||
-            config.action != default_task.config.action || config.recovery_attempts > 0)
+            config.action != default_task.config.action || config.recovery_attempts > 0 || config.force_limit_N > 0)
           adapted = make_navigation_task(config, wire, anatomies);
         const NavigationTask& task = adapted ? *adapted : default_task;
         std::optional<NavigationTask> reshaped;  // the controllers' columns only, as recovery

@@ -57,6 +57,7 @@ struct EvaluationOptions {
   int recovery_attempts = 0;  // --recovery K (task_config.hpp): the columns also report the procedure with recovery
   JunctionModel junctions = JunctionModel::kSeparate;  // --junctions (task_config.hpp; issue 41)
   double step_time_limit_s = 0.0;  // --step-time-limit (run_episode.hpp, TraceOptions; 0 = none)
+  double force_limit_N = 0.0;  // --force-limit F (task_config.hpp, force_limit_N; 0 = off): the controllers' columns
   double reshape_tip_per_mm = 0.0;  // --reshape-tip C (run_episode.hpp, TraceOptions::reshaped; 0 = never): the
                                     // columns also report the procedure with a reshaped second pass ("reshape")
   // evaluate --episodes FIRST:COUNT (issue 40): run only episodes FIRST .. FIRST+COUNT-1 of each row (a

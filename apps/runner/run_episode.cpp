@@ -30,6 +30,7 @@ void record_frame(const NavigationTask& task, const EpisodeState& s, const StepI
   trace.wall_force_mean_total_mN.push_back(info.wall_force_mean_total_mN);
   trace.tip_force_mN.push_back(info.tip_force_mN);
   if (task.config.recovery_attempts > 0) trace.retracting.push_back(info.retracting);
+  if (task.config.force_limit_N > 0) trace.push_held_s.push_back(info.push_held_steps * task.config.dt_s);
   if (options.wire_shape_every > 0 && frame % options.wire_shape_every == 0) {
     trace.wire_shapes.push_back(inserted_node_positions(task.wire, s.wire));
     trace.wire_shape_frame.push_back(frame);

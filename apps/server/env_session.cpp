@@ -44,6 +44,7 @@ json info_json(const NavigationTask& task, const EpisodeState& s, const StepInfo
             {"wall_force_peak_total_mN", i.wall_force_peak_total_mN},
             {"tip_force_mN", i.tip_force_mN}};
   if (!i.problem.empty()) j["problem"] = i.problem;
+  if (task.config.force_limit_N > 0) j["push_held_steps"] = i.push_held_steps;  // physics steps (docs/recovery.md)
   if (task.config.recovery_attempts > 0) {  // the procedure goes on past the strict end (docs/recovery.md)
     j["strict_end"] = i.strict_end;
     j["recovery_attempts"] = i.recovery_attempts;
@@ -117,6 +118,7 @@ std::string spec_json(const NavigationTask& task) {
               {"reward_wrong_branch", c.reward_wrong_branch},
               {"reward_time_per_step", c.reward_time_per_step},
               {"reward_force_per_N", c.reward_force_per_N},
+              {"force_limit_N", c.force_limit_N},
               {"reward_aim", reward_aim_name(c.reward_aim)}}}};
   return j.dump();
 }

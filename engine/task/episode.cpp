@@ -315,7 +315,7 @@ void end_push_pull_step(const NavigationTask& task, EpisodeState& s, int lost, d
   // under the constant push) since the tip last gained stuck_progress_mm. An actor that stops to aim does not
   // stall; one that keeps pushing a buckling wire, or pushes on along a wrong child, does.
   const double stall_mm = c.stuck_steps * env_dt(c) * c.push_mm_per_s;
-  const bool stalled = s.wire.inserted_length_mm - s.inserted_at_best_mm >= stall_mm;
+  const bool stalled = s.wire.inserted_length_mm + s.withheld_mm - s.inserted_at_best_mm >= stall_mm;
   out.terminated = out.info.success || out.info.wrong_branch;
   if (!out.terminated) {
     out.info.step_limit = s.steps >= (s.strict_over ? s.procedure_max_steps : s.max_steps);
@@ -382,15 +382,28 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, const Acti
   WallForce peak;
   double total_sum = 0.0;
   int physics_steps = 0;
+  int held = 0;
+  const double limit_mN = 1e3 * c.force_limit_N;  // 0: off
   const auto start = std::chrono::steady_clock::now();
   for (int k = 0; k < c.frame_skip; ++k) {
-    const StepReport report = step(task.wire, anatomy.scene.get(), control, s.wire);
+    Control applied_control = control;
+    if (limit_mN > 0 && s.last_peak_node_mN > limit_mN) {  // resistance: back off at the push speed
+      const double back = s.wire.inserted_length_mm <= c.initial_insertion_mm ? 0.0 : -c.push_mm_per_s;
+      if (control.push_mm_per_s > back) {  // not already pulling back as fast
+        applied_control.push_mm_per_s = back;
+        applied_control.rotate_rad_per_s = 0.0;
+        s.withheld_mm += (std::max(control.push_mm_per_s, 0.0) - back) * c.dt_s;
+        ++held;
+      }
+    }
+    const StepReport report = step(task.wire, anatomy.scene.get(), applied_control, s.wire);
     out.info.contacts = report.contacts;
     if (!report.ok) {
       out.info.problem = "physics diverged: " + report.problem;
       break;
     }
     const WallForce f = wall_force(task.wire, s.wire);
+    s.last_peak_node_mN = f.peak_node_mN;
     peak.peak_node_mN = std::max(peak.peak_node_mN, f.peak_node_mN);
     peak.total_mN = std::max(peak.total_mN, f.total_mN);
     peak.tip_mN = std::max(peak.tip_mN, f.tip_mN);
@@ -412,6 +425,7 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, const Acti
     info.wall_force_mean_total_mN = physics_steps > 0 ? total_sum / physics_steps : 0.0;
     info.tip_force_mN = peak.tip_mN;
     info.retracting = retracting;
+    info.push_held_steps = held;
   };
   if (!out.info.problem.empty()) {
     // The wire state is not trustworthy: keep the last observation, end the episode (truncated:
@@ -462,7 +476,7 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, const Acti
   if (s.progress_mm > s.best_progress_mm + c.stuck_progress_mm) {
     s.best_progress_mm = s.progress_mm;
     s.best_progress_step = s.steps;
-    s.inserted_at_best_mm = s.wire.inserted_length_mm;
+    s.inserted_at_best_mm = s.wire.inserted_length_mm + s.withheld_mm;
   }
   s.obs[obs_index::kSinceProgress] = out.obs[obs_index::kSinceProgress] = since_progress(c, s);
   out.info = episode_info(task, s);

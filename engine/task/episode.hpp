@@ -54,6 +54,10 @@ struct EpisodeState {
   double inserted_at_best_mm = 0.0;  // the wire's insertion when best_progress_mm was last raised (act/2 stall)
   double pushed_steps = 0.0;       // act/2: the insertion commands summed (full-speed env steps pushed, net)
   double deepest_pushed_steps = 0.0;  // their largest value so far: the reward pays only for going deeper
+  // Force limit (TaskConfig::force_limit_N > 0; else these stay 0): the last physics step's largest single-node
+  // wall force, and the forward push withheld so far (mm), which the stall tests count as pushed.
+  double last_peak_node_mN = 0.0;
+  double withheld_mm = 0.0;
   TipSamples samples;              // scratch, kept here so stepping does not allocate
   // Moving wall (issue 36): the course in the wall's shape at the last observation's time (wire.time),
   // which the observation, the control spheres and the end tests read (current_course). Arcs (progress_mm,
@@ -87,6 +91,7 @@ struct StepInfo {
   double wall_force_peak_total_mN = 0.0;
   double wall_force_mean_total_mN = 0.0;
   double tip_force_mN = 0.0;
+  int push_held_steps = 0;         // physics steps of this env step whose forward push the force limit withheld
   // Recovery (TaskConfig::recovery_attempts). strict_end: the paper's strict episode ends at this step and
   // the flags above say why (with 0 attempts it is terminated || truncated; with recovery the episode may
   // go on). retracting: this step pulled the wire back. recovery_attempts: pull-backs started so far.

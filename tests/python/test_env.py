@@ -166,6 +166,31 @@ def test_force_cost_is_chosen_at_the_server_and_changes_only_the_reward(server_b
         GuidewireEnv(anatomies="t1_straight_y", server_args=["--reward-force", "-1"])
 
 
+def test_force_limit_is_chosen_at_the_server_and_backs_the_wire_off(server_bin):
+    # A limit far below what the wire presses with: once the wall force passes it the server reports physics
+    # steps whose push it withheld, and the wire goes in less far than the same actions without the limit.
+    plain = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1})
+    limited = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1}, server_args=["--force-limit", "0.001"])
+    try:
+        assert plain.spec_reply["task"]["force_limit_N"] == 0.0
+        assert limited.spec_reply["task"]["force_limit_N"] == 0.001
+        plain.reset(seed=2)
+        limited.reset(seed=2)
+        held = 0
+        for _ in range(60):
+            *_, info_plain = plain.step(np.array([0.3], dtype=np.float32))
+            *_, info = limited.step(np.array([0.3], dtype=np.float32))
+            assert "push_held_steps" not in info_plain
+            held += info["push_held_steps"]
+        assert held > 0
+        assert info["inserted_mm"] < info_plain["inserted_mm"]
+    finally:
+        plain.close()
+        limited.close()
+    with pytest.raises(Exception):
+        GuidewireEnv(anatomies="t1_straight_y", server_args=["--force-limit", "-1"])
+
+
 def test_reward_shape_is_chosen_at_the_server_and_changes_only_the_reward(server_bin):
     # Same seed, same actions: the observations agree, the rewards follow each server's sigmoid.
     paper = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1})

@@ -147,6 +147,9 @@ def test_fine_tuning_starts_from_the_given_networks(smoke_run, tmp_path):
     costly = train.server_args(train.Settings(reward_force=0.2))
     assert costly[costly.index("--reward-force") + 1] == "0.2"
     assert "--reward-force" not in train.server_args(train.Settings())  # off: the server's default, the paper's
+    limited = train.server_args(train.Settings(force_limit=1.5))
+    assert limited[limited.index("--force-limit") + 1] == "1.5"
+    assert "--force-limit" not in train.server_args(train.Settings())
 
 
 def test_fine_tuning_from_an_exported_actor_keeps_it_while_the_critics_learn(smoke_run, tmp_path):

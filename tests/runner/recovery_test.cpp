@@ -140,3 +140,24 @@ TEST_CASE("recovery: an episode that succeeds strictly is unchanged by it", "[ru
   CHECK(peak > 0);
   CHECK(ep["force"]["peak_node_N"].get<double>() == Approx(1e-3 * peak));
 }
+
+TEST_CASE("force limit: the trace keeps the time the push was withheld, its JSON and the figures the same sum",
+          "[runner][force]") {
+  gw::TaskConfig c = t1_task(0).config;
+  c.force_limit_N = 0.001;  // far below what the wire presses with on this walled anatomy
+  const gw::NavigationTask limited = gw::make_navigation_task(c, gw::default_wire_params(), t1_task(0).anatomies);
+  auto scripted = gw::make_scripted_omega_controller();
+  const gw::EpisodeTrace t = gw::run_episode(limited, 0, 2, 4, *scripted);
+  REQUIRE(t.push_held_s.size() == t.time_s.size());
+  double held = 0;
+  for (double h : t.push_held_s) held += h;
+  CHECK(held > 0);
+  const nlohmann::json summary = gw::summarize_episodes({t});
+  CHECK(summary["results"][0]["force"]["push_held_s"].get<double>() == Approx(held));
+  CHECK(summary["force"]["mean_push_held_s"].get<double>() == Approx(held));
+  CHECK(gw::trace_from_json(gw::trace_to_json(t), "test").push_held_s == t.push_held_s);
+  // Without the limit nothing is recorded and the figures carry no such entry.
+  const gw::EpisodeTrace free = gw::run_episode(t1_task(0), 0, 2, 4, *scripted);
+  CHECK(free.push_held_s.empty());
+  CHECK_FALSE(gw::summarize_episodes({free})["results"][0]["force"].contains("push_held_s"));
+}

@@ -64,6 +64,8 @@ class Settings:
                                   "engine/task/reward.hpp)")
     reward_force: float = arg(0.0, "reward lost per newton of the env step's peak total wall force (0: the "
                                    "paper's reward; docs/recovery.md)")
+    force_limit: float = arg(0.0, "withhold the forward push while the wire presses the wall harder than this many "
+                                  "newtons at one node (0: off, the paper's task; docs/recovery.md)")
     reward_aim: str = arg("depth", "--push-pull: the orientation term times the step's new depth (depth) or its "
                                    "change over the step (change; engine/task/reward.hpp says why)")
     reward_omega_centre: float = arg(0.1, "centre of the reward sigmoid 2/(1+exp(slope(omega-centre)))-1; paper "
@@ -166,7 +168,8 @@ def server_args(s: Settings) -> list[str]:
         ["--recovery", str(s.recovery)] if s.recovery else []) + (
         ["--push-pull", "--reward-wrong-branch", repr(s.reward_wrong_branch), "--reward-time", repr(s.reward_time),
          "--reward-aim", s.reward_aim] if s.push_pull else []) + (["--since-progress"] if s.since_progress else []) + (
-        ["--reward-force", repr(s.reward_force)] if s.reward_force else [])
+        ["--reward-force", repr(s.reward_force)] if s.reward_force else []) + (
+        ["--force-limit", repr(s.force_limit)] if s.force_limit else [])
 
 
 def make_env_fn(s: Settings, rank: int, eval_env: bool = False, ray_server=None, seed_offset: int = 0):

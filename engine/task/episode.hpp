@@ -54,8 +54,9 @@ struct EpisodeState {
   double inserted_at_best_mm = 0.0;  // the wire's insertion when best_progress_mm was last raised (act/2 stall)
   double pushed_steps = 0.0;       // act/2: the insertion commands summed (full-speed env steps pushed, net)
   double deepest_pushed_steps = 0.0;  // their largest value so far: the reward pays only for going deeper
-  // Force limit (TaskConfig::force_limit_N > 0; else these stay 0): the last physics step's largest single-node
-  // wall force, and the forward push withheld so far (mm), which the stall tests count as pushed.
+  // Force limit (TaskConfig::force_limit_N > 0; else withheld_mm stays 0): the last physics step's largest
+  // single-node wall force, and how much further in the commands would have put the wire than the limit let it
+  // (mm; the commanded forward push and the backing off), which the stall tests count as pushed.
   double last_peak_node_mN = 0.0;
   double withheld_mm = 0.0;
   TipSamples samples;              // scratch, kept here so stepping does not allocate
@@ -91,7 +92,7 @@ struct StepInfo {
   double wall_force_peak_total_mN = 0.0;
   double wall_force_mean_total_mN = 0.0;
   double tip_force_mN = 0.0;
-  int push_held_steps = 0;         // physics steps of this env step whose forward push the force limit withheld
+  int push_held_steps = 0;         // physics steps of this env step the force limit backed the wire off in
   // Recovery (TaskConfig::recovery_attempts). strict_end: the paper's strict episode ends at this step and
   // the flags above say why (with 0 attempts it is terminated || truncated; with recovery the episode may
   // go on). retracting: this step pulled the wire back. recovery_attempts: pull-backs started so far.

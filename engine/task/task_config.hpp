@@ -140,12 +140,13 @@ struct TaskConfig {
   // the safety figures use) for a step costs 1.5 x this. Off for the paper's column and the shipped actors.
   double reward_force_per_N = 0.0;
   // --- Force limit (issue 37; docs/recovery.md "Force limit"; 0 = off: the paper's task, every table row) ---
-  // What a clinician does on feeling resistance: stop pushing. While the wire presses the wall harder than this
-  // (the largest single-node wall force of the last physics step, N), a forward push is withheld for the next
-  // physics step (rotation and pulling back go on). A withheld push counts as pushed for the stall tests: under
-  // the constant push the tip stops progressing (a stall, which recovery answers with a pull-back); under act/2
-  // the withheld millimetres count as wire pushed in without progress. An idealised sensor: the simulator knows
-  // the wall force per node, a robot measures the force at the proximal end.
+  // What a clinician does on feeling resistance: stop, let go of the torque, ease back. While the wire presses the
+  // wall harder than this (the largest single-node wall force of the last physics step, N), the next physics step
+  // pulls the wire back at push_mm_per_s and does not turn it, whatever was asked (a pull-back already as fast goes
+  // on; at the start insertion the wire is held). The commanded forward push counts as pushed for the stall tests:
+  // under the constant push the tip stops progressing (a stall, which recovery answers with a pull-back); under
+  // act/2 it counts as wire pushed in without progress. An idealised sensor: the simulator knows the wall force per
+  // node, a robot measures the force at the proximal end.
   double force_limit_N = 0.0;
   // --- Junctions beyond the two-way fork (issue 41; observation.junctions) ---
   double close_junction_diameters = 2.0;  // kCombined: forks closer than this many diameters of the vessel

@@ -338,7 +338,11 @@ nlohmann::json run_task_settings(const nlohmann::json& run) {
   return {{"push_mm_per_s", s.value("push_mm_per_s", defaults.push_mm_per_s)},
           {"intermediate_target_mm", s.value("intermediate_target_mm", defaults.intermediate_target_mm)},
           {"centerlines", s.value("centerlines", std::string("extracted (CGAL MCF)"))},
-          {"wire", s.value("wire", std::string())}};
+          {"wire", s.value("wire", std::string())},
+          {"recovery_attempts", s.value("recovery_attempts", 0)},
+          {"junctions", s.value("junctions", std::string(junction_model_name(JunctionModel::kSeparate)))},
+          {"reshape_tip_per_mm", s.value("reshape_tip_per_mm", 0.0)},
+          {"force_limit_N", s.value("force_limit_N", 0.0)}};
 }
 
 std::vector<EvaluationRow> select_rows(const std::vector<EvaluationRow>& table, const std::string& filter) {

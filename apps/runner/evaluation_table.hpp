@@ -100,8 +100,10 @@ nlohmann::json resumable_rows(const nlohmann::json& previous, const EvaluationOp
 std::string target_key(const std::string& anatomy, int target);
 std::string episode_key(const nlohmann::json& episode);  // an entry of a summary's "results"
 // The settings besides the seed that a results.json's episodes depend on: {push_mm_per_s,
-// intermediate_target_mm, centerlines, wire} (wire: the parameter file's path as given, "" = the default). Runs that differ in one are different experiments (another
-// insertion speed, other centerlines), and a table joining them would mean neither. A setting a run did
+// intermediate_target_mm, centerlines, wire, recovery_attempts, junctions, reshape_tip_per_mm, force_limit_N}
+// (wire: the parameter file's path as given, "" = the default). Runs that differ in one are different experiments
+// (another insertion speed, other centerlines, a recovery or force limit one has and the other not), and a table
+// joining them would mean neither. A setting a run did
 // not record is the default it ran with; a joined run has its first input's.
 nlohmann::json run_task_settings(const nlohmann::json& run);
 // How many episodes a results.json row's paper figure is of: the row's own record, else the paper's

@@ -80,11 +80,7 @@ std::vector<std::string> write_navigation_outputs(const std::string& dir, const 
     series_wall.static_file = "vessel.vtp";
   }
 
-  std::map<int, std::vector<EpisodeTrace>> by_target;
-  for (std::size_t k = 0; k < traces.size(); ++k) {
-    const EpisodeTrace& t = traces[k];
-    by_target[t.target_id].push_back(t);
-    const std::string stem = "episode" + std::to_string(k) + "_target" + std::to_string(t.target_id);
+  auto write_pass = [&](const EpisodeTrace& t, const std::string& stem) {
     write_trace_json(t, file(stem + ".json"));
     write_trace_vtp(t, file(stem + ".vtp"));
     if (!t.wire_shapes.empty()) {
@@ -95,6 +91,14 @@ std::vector<std::string> write_navigation_outputs(const std::string& dir, const 
       const auto series = write_episode_series(t, (fs::path(dir) / (stem + ".pvd")).string(), stem, series_wall);
       written.insert(written.end(), series.begin(), series.end());
     }
+  };
+  std::map<int, std::vector<EpisodeTrace>> by_target;
+  for (std::size_t k = 0; k < traces.size(); ++k) {
+    const EpisodeTrace& t = traces[k];
+    by_target[t.target_id].push_back(t);
+    const std::string stem = "episode" + std::to_string(k) + "_target" + std::to_string(t.target_id);
+    write_pass(t, stem);
+    if (!t.reshaped.empty()) write_pass(t.reshaped.front(), stem + "_reshaped");  // the second pass, from the inlet
   }
 
   // A beating wall: the figure's silhouette is the end-diastolic wall, outlined at end-systole.

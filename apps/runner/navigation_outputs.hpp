@@ -9,6 +9,8 @@
 //                                               wall and an outline shows it at end-systole
 //   episode<K>_target<T>.json / .vtp            per episode: the trajectory (JSON; VTK tip trace and
 //                                               final wire)
+//   episode<K>_target<T>_reshaped.*            the same for a tip reshape's second pass (navigate
+//                                               --reshape-tip), when the first did not reach the target
 //   episode<K>_target<T>.pvd + episode<K>_target<T>/wire_<frame>.vtp
 //                                               per episode with recorded wire shapes: a ParaView time
 //                                               series, the wire (and the tip's way so far) at every

@@ -1,6 +1,8 @@
 // Joining results tables run on different seeds: counts add up, episodes pair across runs, and runs
 // that do not fit together are refused by name.
 #include <catch2/catch.hpp>
+#include <utility>
+#include <vector>
 
 #include "apps/runner/episode_batch.hpp"
 #include "apps/runner/evaluation_merge.hpp"
@@ -119,6 +121,18 @@ TEST_CASE("merge: runs under different task settings are different experiments a
   stiff["settings"]["wire"] = "stiff_tip.json";
   CHECK_THROWS_WITH(gw::merge_evaluations({a, stiff}, {"a.json", "stiff.json"}),
                     Catch::Contains("stiff.json ran with wire \"stiff_tip.json\""));
+  // The procedure's settings too: a run with recovery, a tip reshape, a force limit or another junction reading
+  // is another experiment than one without.
+  for (const auto& [key, value] : std::vector<std::pair<std::string, nlohmann::json>>{
+           {"recovery_attempts", 3}, {"reshape_tip_per_mm", 0.3}, {"force_limit_N", 1.5}, {"junctions", "kway"}}) {
+    nlohmann::json other = run(10, {true}, {true}, 1);
+    other["settings"][key] = value;
+    CHECK_THROWS_WITH(gw::merge_evaluations({a, other}, {"a.json", "other.json"}),
+                      Catch::Contains("other.json ran with " + key + " " + value.dump()));
+    nlohmann::json shard = run(20, {true}, {true}, 1);  // two runs with the same setting join
+    shard["settings"][key] = value;
+    CHECK(gw::merge_evaluations({other, shard}, {"other.json", "shard.json"})["rows"][0]["episodes"] == 2);
+  }
   nlohmann::json same = run(10, {true}, {true}, 1);  // the defaults written out join one that left them out
   same["settings"]["push_mm_per_s"] = 10.0;
   same["settings"]["intermediate_target_mm"] = 50.0;

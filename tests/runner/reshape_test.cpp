@@ -4,11 +4,14 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 
+#include "apps/report/trace_json.hpp"
 #include "apps/runner/controller.hpp"
 #include "apps/runner/episode_batch.hpp"
 #include "apps/runner/navigation_anatomy.hpp"
+#include "apps/runner/navigation_outputs.hpp"
 #include "apps/runner/run_episode.hpp"
 #include "engine/task/navigation_task.hpp"
 #include "engine/wire/wire_params.hpp"
@@ -20,10 +23,14 @@ namespace {
 // 0.3 /mm gets in.
 const std::string kPl = std::string(GW_SOURCE_DIR) + "/anatomies/validation/pl_validation/pl_validation";
 
-gw::NavigationTask pl_task() {
+const gw::NavigationAnatomy& pl_nav() {
   static const gw::NavigationAnatomy nav =
       gw::load_navigation_anatomy(kPl + ".stl", {1.0, std::nullopt, kPl + ".truth.json", false});
-  return gw::make_navigation_task(gw::TaskConfig{}, gw::default_wire_params(), {nav.anatomy});
+  return nav;
+}
+
+gw::NavigationTask pl_task() {
+  return gw::make_navigation_task(gw::TaskConfig{}, gw::default_wire_params(), {pl_nav().anatomy});
 }
 
 void require_same_frames(const gw::EpisodeTrace& a, const gw::EpisodeTrace& b) {
@@ -83,6 +90,17 @@ TEST_CASE("reshape: a lost procedure is withdrawn and the reshaped tip reaches t
   CHECK(summary["reshape"]["tip_curvature_per_mm"] == 0.3);
   // Joined again from the results alone (evaluate --from-json), the same figures.
   CHECK(gw::summarize_results(summary["results"])["reshape"] == summary["reshape"]);
+
+  // navigate --out: the second pass's trajectory beside the first's.
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "gw_reshape_outputs";
+  std::filesystem::remove_all(dir);
+  gw::write_navigation_outputs(dir.string(), pl_nav(), {b}, {"test"});
+  CHECK(gw::read_trace_json((dir / "episode0_target1.json").string()).time_s.size() == a.time_s.size());
+  const gw::EpisodeTrace written = gw::read_trace_json((dir / "episode0_target1_reshaped.json").string());
+  CHECK(written.outcome == "success");
+  CHECK(written.time_s.size() == second.time_s.size());
+  CHECK(std::filesystem::exists(dir / "episode0_target1_reshaped.vtp"));
+  std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("reshape: a procedure that reaches the target is not reshaped", "[runner][reshape]") {

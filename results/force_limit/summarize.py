@@ -8,6 +8,8 @@ deformed coronary rows, seeds 0-24).
 push_pull_25/, scripted_25/: episodes 25-49 of the same rows (`--episode-scale 1 --episodes 25:25`), the push/pull
 actor and the scripted rule with everything on; with the first 25 they are the rows' 50 episodes (a row's episode k
 is the same at any episode scale), for the push/pull actor against the scripted rule (issue 37 item 3).
+push_pull_50/, scripted_50/: episodes 50-199 of the coronary-like row (`--episode-scale 4 --episodes 50:150`), the same
+two, run after the first 50 left that row undecided: with them it is the row's 200 episodes.
 Sign tests: exact two-sided binomial on the episodes where exactly one of the two succeeded, as the table's.
 """
 import json
@@ -88,23 +90,26 @@ def main():
                 print(f"- {row}, {label}: {key[0]} T{key[1]} seed {key[2]}: {a['outcome']} at {pa:.2f} N -> "
                       f"{b['outcome']} at {pb:.2f} N (backed off {b.get('force', {}).get('push_held_s', 0.0):.2f} s)")
 
-    print("\nThe push/pull actor against the scripted rule, both with recovery, reshape and the limit, the rows' 50 "
-          "episodes (seeds 0-49):\n")
+    print("\nThe push/pull actor against the scripted rule, both with recovery, reshape and the limit, on the rows' "
+          "first 50 episodes (seeds 0-49), and on the coronary-like row's 200 (seeds 0-199):\n")
     print("| row | stage | push/pull SAC (act/2) | scripted omega + wrapper | won | lost | p (sign test) | "
           "peak node > 1.5 N (push/pull, scripted) |")
     print("|---|---|---|---|---|---|---|---|")
-    for row in ROWS:
+    for row, more in [(r, False) for r in ROWS] + [("coronary-like", True)]:
         pp = {**episodes("push_pull/results.json", row, "sac-policy"), **episodes("push_pull_25/results.json", row, "sac-policy")}
         sc = {**episodes("results.json", row, "scripted-omega"), **episodes("scripted_25/results.json", row, "scripted-omega")}
+        if more:
+            pp.update(episodes("push_pull_50/results.json", row, "sac-policy"))
+            sc.update(episodes("scripted_50/results.json", row, "scripted-omega"))
         keys = [k for k in pp if k in sc]
-        if len(keys) < 50:
+        if len(keys) < (200 if more else 50):
             continue
         n = len(keys)
         for stage, f in STAGES:
             won = sum(f(pp[k]) == "success" and f(sc[k]) != "success" for k in keys)
             lost = sum(f(pp[k]) != "success" and f(sc[k]) == "success" for k in keys)
             over = [sum(d[k]["reshape"].get("force", {}).get("peak_node_N", 0.0) > 1.5 for k in keys) for d in (pp, sc)]
-            print(f"| {row} | {stage} | {rate(sum(f(pp[k]) == 'success' for k in keys), n)} | "
+            print(f"| {row}{', 200 episodes' if more else ''} | {stage} | {rate(sum(f(pp[k]) == 'success' for k in keys), n)} | "
                   f"{rate(sum(f(sc[k]) == 'success' for k in keys), n)} | {won} | {lost} | {sign_test(won, lost):.3f} | "
                   f"{over[0]}/{n}, {over[1]}/{n} |")
 

@@ -91,6 +91,10 @@ int main(int argc, char** argv) {
                  "pull back and retry after a wrong branch or a stall, at most K times (docs/recovery.md); the strict "
                  "columns are the same episodes' first end, the \"with recovery\" figures the whole procedure's")
       ->check(CLI::NonNegativeNumber);
+  app.add_flag("--recovery-assist", o.recovery_assist,
+               "with --recovery: a push/pull actor (act/2) is pulled back by the wrapper on a stall or after stuck_steps "
+               "env steps in a wrong child, and re-aims (docs/recovery.md \"Assisted recovery\"); rotation-only "
+               "controllers always are");
   app.add_option("--reshape-tip", o.reshape_tip_per_mm,
                  "when a procedure does not reach the target (with --recovery: after its pull-backs), withdraw the wire, "
                  "reshape its tip to this curvature (1/mm; the wire's own is 0.2) and navigate again from the inlet "
@@ -181,6 +185,8 @@ int main(int argc, char** argv) {
     }
     if (centerlines != "extract" && centerlines != "truth")
       throw std::invalid_argument("--centerlines must be 'extract' or 'truth', got '" + centerlines + "'");
+    if (o.recovery_assist && o.recovery_attempts <= 0)
+      throw std::invalid_argument("--recovery-assist needs --recovery K with K >= 1 (it pulls back within those attempts)");
     o.extract_centerlines = centerlines == "extract";
     o.junctions = gw::parse_junction_model(junctions);
     o.progress = true;

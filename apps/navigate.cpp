@@ -73,6 +73,10 @@ int main(int argc, char** argv) {
                  "actor, act/2, pulls back itself); the outcome stays the strict episode's, the procedure's is under "
                  "\"recovery\"")
       ->check(CLI::NonNegativeNumber);
+  bool recovery_assist = false;
+  app.add_flag("--recovery-assist", recovery_assist,
+               "with --recovery and a push/pull actor (act/2): the wrapper pulls the wire back on a stall or after "
+               "stuck_steps env steps in a wrong child, and the actor re-aims (docs/recovery.md \"Assisted recovery\")");
   double recovery_retract_mm = gw::TaskConfig{}.recovery_retract_mm;
   app.add_option("--recovery-retract", recovery_retract_mm,
                  "with --recovery: pull the tip back to this many mm before the centre of the bifurcation it was lost at")
@@ -157,6 +161,7 @@ int main(int argc, char** argv) {
     config.recovery_retract_mm = recovery_retract_mm;
     config.recovery_turn_rad = recovery_turn_deg * EIGEN_PI / 180.0;
     config.recovery_pull_mm_per_s = recovery_pull;
+    config.recovery_assist = recovery_assist;
     config.force_limit_N = force_limit;
 
     const gw::WireParams wire = wire_path.empty() ? gw::default_wire_params() : gw::load_wire_params(wire_path);
@@ -202,6 +207,7 @@ int main(int argc, char** argv) {
     summary["push_mm_per_s"] = push_mm_per_s;
     summary["task_scale"] = task.courses.at(0).at(0).vessel_scale ? "vessel" : "fixed";  // --task-scale, resolved
     if (recovery > 0) summary["recovery_attempts"] = recovery;
+    if (recovery_assist) summary["recovery_assist"] = true;
     if (reshape_tip > 0) summary["reshape_tip_per_mm"] = reshape_tip;
     if (step_time_limit > 0) summary["step_time_limit_s"] = step_time_limit;
     if (config.action != gw::ActionLayout::kRotation) summary["action_layout"] = gw::action_layout_name(config.action);

@@ -193,6 +193,7 @@ nlohmann::json evaluation_settings(const EvaluationOptions& o) {
           {"controllers", o.controllers}};
   // Only when on, so the results.json files written before recovery existed resume as before.
   if (o.recovery_attempts > 0) settings["recovery_attempts"] = o.recovery_attempts;
+  if (o.recovery_assist) settings["recovery_assist"] = true;
   if (o.junctions != JunctionModel::kSeparate) settings["junctions"] = junction_model_name(o.junctions);
   if (o.step_time_limit_s > 0) settings["step_time_limit_s"] = o.step_time_limit_s;
   if (o.reshape_tip_per_mm > 0) settings["reshape_tip_per_mm"] = o.reshape_tip_per_mm;
@@ -295,6 +296,7 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
         TaskConfig config = base_config;
         make()->adapt(config);  // an actor trained on the paper's omega (obs/1) is evaluated with it
         config.recovery_attempts = o.recovery_attempts;  // the controllers' columns only: probes stay strict
+        config.recovery_assist = o.recovery_assist && config.recovery_attempts > 0;
         config.force_limit_N = o.force_limit_N;
         std::optional<NavigationTask> adapted;
         if (config.observation.omega_plane != default_task.config.observation.omega_plane ||
@@ -340,6 +342,7 @@ nlohmann::json run_task_settings(const nlohmann::json& run) {
           {"centerlines", s.value("centerlines", std::string("extracted (CGAL MCF)"))},
           {"wire", s.value("wire", std::string())},
           {"recovery_attempts", s.value("recovery_attempts", 0)},
+          {"recovery_assist", s.value("recovery_assist", false)},
           {"junctions", s.value("junctions", std::string(junction_model_name(JunctionModel::kSeparate)))},
           {"reshape_tip_per_mm", s.value("reshape_tip_per_mm", 0.0)},
           {"force_limit_N", s.value("force_limit_N", 0.0)}};

@@ -55,6 +55,7 @@ struct EvaluationOptions {
   double push_mm_per_s = TaskConfig{}.push_mm_per_s;                    // insertion speed (task_config.hpp)
   std::string wire_path;                                                // wire parameter JSON ("" = the 0.014" wire)
   int recovery_attempts = 0;  // --recovery K (task_config.hpp): the columns also report the procedure with recovery
+  bool recovery_assist = false;  // --recovery-assist (task_config.hpp, recovery_assist): with recovery, act/2 columns
   JunctionModel junctions = JunctionModel::kSeparate;  // --junctions (task_config.hpp; issue 41)
   double step_time_limit_s = 0.0;  // --step-time-limit (run_episode.hpp, TraceOptions; 0 = none)
   double force_limit_N = 0.0;  // --force-limit F (task_config.hpp, force_limit_N; 0 = off): the controllers' columns
@@ -100,7 +101,8 @@ nlohmann::json resumable_rows(const nlohmann::json& previous, const EvaluationOp
 std::string target_key(const std::string& anatomy, int target);
 std::string episode_key(const nlohmann::json& episode);  // an entry of a summary's "results"
 // The settings besides the seed that a results.json's episodes depend on: {push_mm_per_s,
-// intermediate_target_mm, centerlines, wire, recovery_attempts, junctions, reshape_tip_per_mm, force_limit_N}
+// intermediate_target_mm, centerlines, wire, recovery_attempts, recovery_assist, junctions, reshape_tip_per_mm,
+// force_limit_N}
 // (wire: the parameter file's path as given, "" = the default). Runs that differ in one are different experiments
 // (another insertion speed, other centerlines, a recovery or force limit one has and the other not), and a table
 // joining them would mean neither. A setting a run did

@@ -115,6 +115,7 @@ std::string spec_json(const NavigationTask& task) {
               {"intermediate_target_mm", c.intermediate_target_mm},
               {"success_radius_mm", c.success_radius_mm},
               {"recovery_attempts", c.recovery_attempts},
+              {"recovery_assist", c.recovery_assist},
               {"reward_wrong_branch", c.reward_wrong_branch},
               {"reward_time_per_step", c.reward_time_per_step},
               {"reward_force_per_N", c.reward_force_per_N},

@@ -254,10 +254,11 @@ int recovery_turn_steps(const TaskConfig& c, int attempt) {
   return std::max(1, static_cast<int>(std::lround(attempt * c.recovery_turn_rad / (c.max_rotation_rad_per_s * env_dt(c)))));
 }
 
-// Recovery: starts pulling the wire back to retract_target (one attempt).
-void start_retraction(const NavigationTask& task, EpisodeState& s, int lost) {
+// Recovery: starts pulling the wire back to retract_target (one attempt; `new_attempt` false: a pull-back for
+// an attempt already counted, act/2's entry into the wrong child it is pulled out of).
+void start_retraction(const NavigationTask& task, EpisodeState& s, int lost, bool new_attempt = true) {
   const TaskConfig& c = task.config;
-  ++s.recovery_attempts_used;
+  if (new_attempt) ++s.recovery_attempts_used;
   s.retracting = true;
   s.in_control = false;
   s.retract_to_mm = retract_target(c, current_course(s), s.progress_mm, lost);
@@ -286,13 +287,15 @@ void end_retraction(const NavigationTask& task, EpisodeState& s) {
   s.in_control = course.policy_always || near_a_bifurcation(course, s.tip);
   s.best_progress_mm = s.progress_mm;
   s.best_progress_step = s.steps;
+  s.inserted_at_best_mm = s.wire.inserted_length_mm + s.withheld_mm;  // act/2's stall test starts again too
 }
 
 // act/2 (push/pull): the end of step_episode once the tip's wrong-branch test (`lost`) is known; the caller
 // takes the force cost off the reward. The strict end is the paper's (first wrong branch, a stall, the step
 // limit); with recovery_attempts K > 0 the procedure goes on under the actor: an entry into a wrong child uses
 // one of K retries and the one after the K-th ends it, as does a stall (wire pushed in without progress);
-// recovery_time_s past the step limit bounds it (task_config.hpp).
+// recovery_time_s past the step limit bounds it (task_config.hpp). With recovery_assist the wrapper's pull-back
+// answers a stall (one attempt) and a tip that stays stuck_steps env steps in a wrong child (no new attempt).
 void end_push_pull_step(const NavigationTask& task, EpisodeState& s, int lost, double rotation, double insertion,
                         double omega_before, StepOutcome& out) {
   const TaskConfig& c = task.config;
@@ -339,6 +342,17 @@ void end_push_pull_step(const NavigationTask& task, EpisodeState& s, int lost, d
     // strict columns). A stall ends the procedure.
     out.terminated = entered && failed;
     out.truncated = !out.terminated && (failed || stalled);
+    if (c.recovery_assist && !failed) {
+      s.wrong_branch_steps = in_wrong_branch ? s.wrong_branch_steps + 1 : 0;
+      const bool lingering = in_wrong_branch && s.wrong_branch_steps >= c.stuck_steps;
+      const bool retry = stalled && (in_wrong_branch || s.recovery_attempts_used < c.recovery_attempts);
+      if (lingering || retry) {
+        start_retraction(task, s, lost, !in_wrong_branch);
+        s.wrong_branch_steps = 0;
+        out.info.in_control = false;
+        out.truncated = false;
+      }
+    }
     const bool strict_verdict = out.info.strict_end && !out.terminated && !out.truncated;
     out.info.wrong_branch = strict_verdict ? in_wrong_branch : out.terminated;
     out.info.stuck = stalled;
@@ -455,6 +469,12 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, const Acti
 
   if (retracting) {
     // Recovery only: no end test but the procedure's step limit while the wire comes back.
+    if (push_pull) {  // recovery_assist: the flag follows the tip out of the wrong child; time and force still cost
+      const Anatomy& geometry = s.shape.valid ? s.shape.anatomy : anatomy;
+      const int lost = wrong_branch_entered(c, geometry, current_course(s), s.tip, s.course_distance_mm);
+      s.obs[obs_index::kWrongBranch] = lost >= 0 ? 1.0 : 0.0;
+      out.reward = -c.reward_time_per_step - force_cost;
+    }
     --s.retract_steps_left;
     const double pull_per_step = env_dt(c) * c.recovery_pull_mm_per_s;
     if (s.progress_mm <= s.retract_to_mm || s.retract_steps_left <= 0 ||

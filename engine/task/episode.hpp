@@ -54,6 +54,7 @@ struct EpisodeState {
   double inserted_at_best_mm = 0.0;  // the wire's insertion when best_progress_mm was last raised (act/2 stall)
   double pushed_steps = 0.0;       // act/2: the insertion commands summed (full-speed env steps pushed, net)
   double deepest_pushed_steps = 0.0;  // their largest value so far: the reward pays only for going deeper
+  int wrong_branch_steps = 0;      // act/2 with recovery_assist: env steps the tip has stayed in a wrong child
   // Force limit (TaskConfig::force_limit_N > 0; else withheld_mm stays 0): the last physics step's largest
   // single-node wall force, and how much further in the commands would have put the wire than the limit let it
   // (mm; the commanded forward push and the backing off), which the stall tests count as pushed.

@@ -125,6 +125,12 @@ struct TaskConfig {
   // A stall under act/2 is wire pushed in without progress (stuck_steps full-speed pushes, 24 mm: the strict
   // rule under the constant push), so stopping to aim is not one; it ends the strict episode and the procedure.
   // StepInfo::recovery_attempts counts the entries into a wrong child that the procedure went on after.
+  // With recovery_assist (act/2 only; act/1 is always recovered by the wrapper) the wrapper's pull-back, turn and
+  // re-aim above also step in for the actor where it does not recover by itself: on a stall (which then uses one
+  // of the K attempts instead of ending the procedure; with none left it ends it) and when the tip has stayed in
+  // a wrong child for stuck_steps env steps (its entry already used an attempt, so this pull-back uses none). The
+  // actor is handed the wire back at the end of the pull-back. Off: every act/2 run before it, bit for bit.
+  bool recovery_assist = false;
   // The act/2 reward (reward.hpp, push_pull_reward): the paper's terms earned in proportion to the forward
   // insertion, less this per env step while the tip is in a wrong child.
   double reward_wrong_branch = 1.0;

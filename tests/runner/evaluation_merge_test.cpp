@@ -121,10 +121,10 @@ TEST_CASE("merge: runs under different task settings are different experiments a
   stiff["settings"]["wire"] = "stiff_tip.json";
   CHECK_THROWS_WITH(gw::merge_evaluations({a, stiff}, {"a.json", "stiff.json"}),
                     Catch::Contains("stiff.json ran with wire \"stiff_tip.json\""));
-  // The procedure's settings too: a run with recovery, a tip reshape, a force limit or another junction reading
+  // The procedure's settings too: a run with recovery, an assisted one, a tip reshape, a force limit or another junction reading
   // is another experiment than one without.
   for (const auto& [key, value] : std::vector<std::pair<std::string, nlohmann::json>>{
-           {"recovery_attempts", 3}, {"reshape_tip_per_mm", 0.3}, {"force_limit_N", 1.5}, {"junctions", "kway"}}) {
+           {"recovery_attempts", 3}, {"recovery_assist", true}, {"reshape_tip_per_mm", 0.3}, {"force_limit_N", 1.5}, {"junctions", "kway"}}) {
     nlohmann::json other = run(10, {true}, {true}, 1);
     other["settings"][key] = value;
     CHECK_THROWS_WITH(gw::merge_evaluations({a, other}, {"a.json", "other.json"}),

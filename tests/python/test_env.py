@@ -339,9 +339,11 @@ def test_push_pull_is_layouts_obs5_act2_and_holds_the_wire_when_stopped(server_b
         assert pp.action_space.shape == (2,) and pp.observation_space.shape == (14,)
         assert pp.observation_names[-2:] == ["insertion", "wrong_branch"]
         pp7 = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1},
-                           server_args=["--push-pull", "--since-progress"])
+                           server_args=["--push-pull", "--since-progress", "--recovery", "1", "--recovery-assist"])
         try:
             assert pp7.spec_reply["obs_layout"] == "guidewire-nav/obs/7"
+            assert pp7.spec_reply["task"]["recovery_assist"] is True  # docs/recovery.md "Assisted recovery"
+            assert pp.spec_reply["task"]["recovery_assist"] is False
             assert pp7.observation_names[-3:] == ["insertion", "wrong_branch", "since_progress"]
             assert pp7.observation_space.shape == (15,)
         finally:

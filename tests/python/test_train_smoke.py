@@ -150,6 +150,8 @@ def test_fine_tuning_starts_from_the_given_networks(smoke_run, tmp_path):
     limited = train.server_args(train.Settings(force_limit=1.5))
     assert limited[limited.index("--force-limit") + 1] == "1.5"
     assert "--force-limit" not in train.server_args(train.Settings())
+    assisted = train.server_args(train.Settings(push_pull=True, recovery=3, recovery_assist=True))
+    assert "--recovery-assist" in assisted and "--recovery-assist" not in train.server_args(train.Settings())
 
 
 def test_fine_tuning_from_an_exported_actor_keeps_it_while_the_critics_learn(smoke_run, tmp_path):

@@ -58,6 +58,8 @@ class Settings:
                                       "progressed (engine/task/observation.hpp says why)")
     recovery: int = arg(0, "episodes go on after the strict end, at most this many retries (with --push-pull "
                            "the actor pulls back itself; docs/recovery.md)")
+    recovery_assist: bool = arg(False, "with --recovery and --push-pull: the wrapper pulls the wire back on a stall "
+                                       "or after stuck_steps env steps in a wrong child (docs/recovery.md)")
     reward_wrong_branch: float = arg(1.0, "--push-pull: reward lost per env step while the tip is in a wrong "
                                           "child")
     reward_time: float = arg(0.0, "--push-pull: reward lost every env step, a cost of time (0: stopping is free; "
@@ -166,6 +168,7 @@ def server_args(s: Settings) -> list[str]:
             "--roll-disturbance", repr(s.roll_disturbance), "--random-start", repr(s.random_start),
             "--junctions", s.junctions] + (["--omega-side"] if s.omega_side else []) + (
         ["--recovery", str(s.recovery)] if s.recovery else []) + (
+        ["--recovery-assist"] if s.recovery_assist else []) + (
         ["--push-pull", "--reward-wrong-branch", repr(s.reward_wrong_branch), "--reward-time", repr(s.reward_time),
          "--reward-aim", s.reward_aim] if s.push_pull else []) + (["--since-progress"] if s.since_progress else []) + (
         ["--reward-force", repr(s.reward_force)] if s.reward_force else []) + (

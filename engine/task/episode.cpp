@@ -339,7 +339,7 @@ void end_push_pull_step(const NavigationTask& task, EpisodeState& s, int lost, d
     }
     // A tip still in the child it entered earlier goes on, and so does the step that ended the strict episode
     // unless it ends the procedure too; on such a step the flags say why the strict episode ended (for the
-    // strict columns). A stall ends the procedure.
+    // strict columns). A stall ends the procedure (with recovery_assist and an attempt left: a pull-back).
     out.terminated = entered && failed;
     out.truncated = !out.terminated && (failed || stalled);
     if (c.recovery_assist && !failed) {

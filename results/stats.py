@@ -1,6 +1,9 @@
-"""Statistics the results scripts share (standard library only): the Wilson interval (z 1.96; the C++ table's
-apps/runner/success_statistics.hpp uses the exact 1.95996) and the exact sign test the table uses."""
+"""What the results scripts share (standard library only): the Wilson interval (z 1.96; the C++ table's
+apps/runner/success_statistics.hpp uses the exact 1.95996), the exact sign test the table uses, a success-rate cell,
+and one column's episodes of an evaluate results.json."""
+import json
 import math
+import os
 
 
 def wilson(k, n, z=1.96):
@@ -21,3 +24,20 @@ def sign_test(won, lost):
         return 1.0
     k = min(won, lost)
     return min(1.0, 2 * sum(math.comb(n, i) for i in range(k + 1)) / 2 ** n)
+
+
+def rate(k, n):
+    """A success cell: "k/n (p%, lo-hi%)" with the Wilson interval."""
+    lo, hi = wilson(k, n)
+    return f"{k}/{n} ({100 * k / n:.0f}%, {100 * lo:.0f}-{100 * hi:.0f}%)"
+
+
+def run_episodes(path, row, column):
+    """(anatomy, target, seed) -> episode result of `column` in `row` of the evaluate results.json at `path`
+    ({} when the file, the row or the column is not there)."""
+    if not os.path.exists(path):
+        return {}
+    for r in json.load(open(path))["rows"]:
+        if r["name"] == row and column in r["results"]:
+            return {(e["anatomy"], e["target"], e["seed"]): e for e in r["results"][column]["results"]}
+    return {}

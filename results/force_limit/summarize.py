@@ -12,13 +12,12 @@ push_pull_50/, scripted_50/: episodes 50-199 of the coronary-like row (`--episod
 two, run after the first 50 left that row undecided: with them it is the row's 200 episodes.
 Sign tests: exact two-sided binomial on the episodes where exactly one of the two succeeded, as the table's.
 """
-import json
 import os
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
-from stats import sign_test, wilson  # noqa: E402  (results/stats.py)
+from stats import rate, run_episodes, sign_test  # noqa: E402  (results/stats.py)
 
 ROWS = ["coronary-like", "deformed coronary"]
 # (label, file beside this one, the run without the limit, column)
@@ -32,18 +31,7 @@ STAGES = [("strict", lambda e: e["outcome"]), ("with recovery", lambda e: e["rec
 
 
 def episodes(path, row, column):
-    full = os.path.join(HERE, path)
-    if not os.path.exists(full):
-        return {}
-    for r in json.load(open(full))["rows"]:
-        if r["name"] == row and column in r["results"]:
-            return {(e["anatomy"], e["target"], e["seed"]): e for e in r["results"][column]["results"]}
-    return {}
-
-
-def rate(k, n):
-    lo, hi = wilson(k, n)
-    return f"{k}/{n} ({100 * k / n:.0f}%, {100 * lo:.0f}-{100 * hi:.0f}%)"
+    return run_episodes(os.path.join(HERE, path), row, column)
 
 
 def force_cells(eps):

@@ -21,7 +21,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
-from stats import sign_test, wilson  # noqa: E402  (results/stats.py)
+from stats import rate, sign_test  # noqa: E402  (results/stats.py)
 
 COMPARED_ROWS = ["coronary-like", "deformed coronary"]
 # every_row/results.json: the shipped push/pull actor and the scripted rule with the wrapper on the table's
@@ -34,11 +34,6 @@ ROWS = OTHER_ROWS + COMPARED_ROWS
 def load(*parts):
     path = os.path.join(HERE, *parts)
     return {r["name"]: r for r in json.load(open(path))["rows"]} if os.path.exists(path) else {}
-
-
-def rate(k, n):
-    lo, hi = wilson(k, n)
-    return f"{k}/{n} ({100 * k / n:.0f}%, {100 * lo:.0f}-{100 * hi:.0f}%)"
 
 
 def outcomes(column, recovery):

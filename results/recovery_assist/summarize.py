@@ -17,7 +17,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
-from stats import sign_test, wilson  # noqa: E402  (results/stats.py)
+from stats import rate, run_episodes, sign_test  # noqa: E402  (results/stats.py)
 
 ROWS = [("coronary-like", "coronary_like/results.json"), ("deformed coronary", "deformed/results.json")]
 BEFORE = "../force_limit"
@@ -26,13 +26,7 @@ STAGES = [("strict", lambda e: e["outcome"]), ("with recovery", lambda e: e["rec
 
 
 def episodes(path, row, column):
-    full = os.path.join(HERE, path)
-    if not os.path.exists(full):
-        return {}
-    for r in json.load(open(full))["rows"]:
-        if r["name"] == row and column in r["results"]:
-            return {(e["anatomy"], e["target"], e["seed"]): e for e in r["results"][column]["results"]}
-    return {}
+    return run_episodes(os.path.join(HERE, path), row, column)
 
 
 def joined(files, row, column):
@@ -40,11 +34,6 @@ def joined(files, row, column):
     for f in files:
         out.update(episodes(os.path.join(BEFORE, f), row, column))
     return out
-
-
-def rate(k, n):
-    lo, hi = wilson(k, n)
-    return f"{k}/{n} ({100 * k / n:.0f}%, {100 * lo:.0f}-{100 * hi:.0f}%)"
 
 
 def main():

@@ -14,7 +14,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
-from stats import sign_test, wilson  # noqa: E402  (results/stats.py)
+from stats import rate, sign_test  # noqa: E402  (results/stats.py)
 
 ROWS = ["coronary-like", "deformed coronary"]
 # (label, file beside this one, column, the run without reshape on the same episodes: files and column)
@@ -38,11 +38,6 @@ def rows_of(*paths):
 def episodes(row, column):
     res = row["results"].get(column) if row else None
     return {(e["anatomy"], e["target"], e["seed"]): e for e in res["results"]} if res else {}
-
-
-def rate(k, n):
-    lo, hi = wilson(k, n)
-    return f"{k}/{n} ({100 * k / n:.0f}%, {100 * lo:.0f}-{100 * hi:.0f}%)"
 
 
 def first_pass(e):

@@ -80,6 +80,19 @@ def test_navigate_runs_the_exported_actor(smoke_run):
     assert summary["results"][0]["outcome"] in ("success", "wrong_branch", "stuck", "timeout")
 
 
+def test_navigate_summary_counts_the_procedures_with_recovery():
+    """The last line gives the strict count and, with --recovery, the procedures' count beside it (one
+    push-only episode that enters the wrong branch, then is pulled back and reaches the target)."""
+    t1 = REPO / "anatomies" / "train" / "t1_straight_y" / "t1_straight_y"
+    res = subprocess.run([str(_app("navigate")), "--anatomy", f"{t1}.stl", "--centerline", f"{t1}.truth.json",
+                          "--target", "1", "--seed", "2", "--controller", "push-only", "--recovery", "3"],
+                         capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr
+    lines = res.stdout.splitlines()
+    assert "-> wrong_branch" in lines[-2] and "with recovery -> success" in lines[-2]
+    assert lines[-1].startswith("0/1 reached the target (0%, strict); with recovery 1/1 (100%) in ")
+
+
 @pytest.mark.parametrize("args,fragment", [
     (["--target", "7", "--controller", "push-only"], "target 7 does not exist"),
     (["--target", "x", "--controller", "push-only"], "'x' is not a number"),

@@ -1,18 +1,45 @@
-"""The validation-tree check of results/recovery_assist/README.md: the navigate --json files beside this one, alone
-against assisted, episode by episode (standard library only)."""
+"""The validation-tree check of results/recovery_assist/README.md (standard library only): the navigate --json files
+beside this one. Where both runs exist (<tree>_alone.json, <tree>_assist.json) the actor alone against assisted,
+episode by episode; for every assisted run its procedures that did not reach the target, with how they ended."""
 import json
 import os
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-for a in ["rca_validation","rca_validation_deformed"]:
-    try:
-        A=json.load(open(os.path.join(HERE, f"{a}_alone.json"))); B=json.load(open(os.path.join(HERE, f"{a}_assist.json")))
-    except Exception as ex:
-        print(a, "missing", ex); continue
-    ka={(r["target"],r["seed"]):r for r in A["results"]}; kb={(r["target"],r["seed"]):r for r in B["results"]}
-    for st in ["recovery","reshape"]:
-        sa=sum(ka[k][st]["outcome"]=="success" for k in ka); sb=sum(kb[k][st]["outcome"]=="success" for k in kb)
-        won=sum(kb[k][st]["outcome"]=="success" and ka[k][st]["outcome"]!="success" for k in ka)
-        lost=sum(kb[k][st]["outcome"]!="success" and ka[k][st]["outcome"]=="success" for k in ka)
-        print(a, st, f"alone {sa}/{len(ka)} assisted {sb}/{len(kb)} won {won} lost {lost}")
-    print(" strict", sum(r["outcome"]=="success" for r in A["results"]), sum(r["outcome"]=="success" for r in B["results"]))
+TREES = ["rca_validation", "rca_validation_deformed", "pl_validation", "syn_validation"]
+STAGES = ["recovery", "reshape"]
+
+
+def load(tree, kind):
+    path = os.path.join(HERE, f"{tree}_{kind}.json")
+    if not os.path.exists(path):
+        return None
+    return {(r["target"], r["seed"]): r for r in json.load(open(path))["results"]}
+
+
+def reached(results, stage):
+    return {k for k, r in results.items() if r[stage]["outcome"] == "success"}
+
+
+def main():
+    for tree in TREES:
+        alone, assisted = load(tree, "alone"), load(tree, "assist")
+        if assisted is None:
+            continue
+        n = len(assisted)
+        strict = sum(r["outcome"] == "success" for r in assisted.values())
+        print(f"{tree}: strict {strict}/{n}")
+        for stage in STAGES:
+            line = f"  with {stage}: assisted {len(reached(assisted, stage))}/{n}"
+            if alone is not None:
+                a, b = reached(alone, stage), reached(assisted, stage)
+                line += f", alone {len(a)}/{len(alone)}, won {len(b - a)} lost {len(a - b)}"
+            print(line)
+        for (target, seed), r in sorted(assisted.items()):
+            if r["reshape"]["outcome"] != "success":
+                print(f"  not reached: T{target} seed {seed}: first pass {r['recovery']['outcome']} after "
+                      f"{r['recovery']['attempts']} pull-backs ({r['recovery']['detail'] or r['detail']}); "
+                      f"reshaped pass {r['reshape']['outcome']} ({r['reshape']['detail']})")
+
+
+if __name__ == "__main__":
+    main()

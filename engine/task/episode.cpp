@@ -288,6 +288,8 @@ void end_retraction(const NavigationTask& task, EpisodeState& s) {
   s.best_progress_mm = s.progress_mm;
   s.best_progress_step = s.steps;
   s.inserted_at_best_mm = s.wire.inserted_length_mm + s.withheld_mm;  // act/2's stall test starts again too
+  s.standstill_at_mm = s.inserted_at_best_mm;                          // and the assist's standstill test
+  s.standstill_since_step = s.steps;
 }
 
 // act/2 (push/pull): the end of step_episode once the tip's wrong-branch test (`lost`) is known; the caller
@@ -295,7 +297,8 @@ void end_retraction(const NavigationTask& task, EpisodeState& s) {
 // limit); with recovery_attempts K > 0 the procedure goes on under the actor: an entry into a wrong child uses
 // one of K retries and the one after the K-th ends it, as does a stall (wire pushed in without progress);
 // recovery_time_s past the step limit bounds it (task_config.hpp). With recovery_assist the wrapper's pull-back
-// answers a stall (one attempt) and a tip that stays stuck_steps env steps in a wrong child (no new attempt).
+// answers a stall (one attempt), a tip that stays stuck_steps env steps in a wrong child (no new attempt) and,
+// after the strict end, a standstill (one attempt).
 void end_push_pull_step(const NavigationTask& task, EpisodeState& s, int lost, double rotation, double insertion,
                         double omega_before, StepOutcome& out) {
   const TaskConfig& c = task.config;
@@ -346,7 +349,17 @@ void end_push_pull_step(const NavigationTask& task, EpisodeState& s, int lost, d
       s.wrong_branch_steps = in_wrong_branch ? s.wrong_branch_steps + 1 : 0;
       const bool lingering = in_wrong_branch && s.wrong_branch_steps >= c.stuck_steps;
       const bool retry = stalled && (in_wrong_branch || s.recovery_attempts_used < c.recovery_attempts);
-      if (lingering || retry) {
+      // A standstill: since the tip last progressed, the commands have kept the wire within stuck_progress_mm of
+      // where it was for stuck_steps env steps (an actor at a fixed point of its own; pushing is the stall above).
+      const double commanded_mm = s.wire.inserted_length_mm + s.withheld_mm;
+      if (s.best_progress_step > s.standstill_since_step ||
+          std::abs(commanded_mm - s.standstill_at_mm) >= c.stuck_progress_mm) {
+        s.standstill_at_mm = commanded_mm;
+        s.standstill_since_step = s.steps;
+      }
+      const bool standstill = s.strict_over && !in_wrong_branch && s.steps - s.standstill_since_step >= c.stuck_steps &&
+                              s.recovery_attempts_used < c.recovery_attempts;
+      if (lingering || retry || standstill) {
         start_retraction(task, s, lost, !in_wrong_branch);
         s.wrong_branch_steps = 0;
         out.info.in_control = false;

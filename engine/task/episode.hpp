@@ -55,6 +55,10 @@ struct EpisodeState {
   double pushed_steps = 0.0;       // act/2: the insertion commands summed (full-speed env steps pushed, net)
   double deepest_pushed_steps = 0.0;  // their largest value so far: the reward pays only for going deeper
   int wrong_branch_steps = 0;      // act/2 with recovery_assist: env steps the tip has stayed in a wrong child
+  // act/2 with recovery_assist, the standstill test: the commanded insertion (inserted + withheld) when the tip
+  // last progressed or the wire last moved stuck_progress_mm, and that env step.
+  double standstill_at_mm = 0.0;
+  int standstill_since_step = 0;
   // Force limit (TaskConfig::force_limit_N > 0; else withheld_mm stays 0): the last physics step's largest
   // single-node wall force, and how much further in the commands would have put the wire than the limit let it
   // (mm; the commanded forward push and the backing off), which the stall tests count as pushed.

@@ -128,8 +128,11 @@ struct TaskConfig {
   // With recovery_assist (act/2 only; act/1 is always recovered by the wrapper) the wrapper's pull-back, turn and
   // re-aim above also step in for the actor where it does not recover by itself: on a stall (which then uses one
   // of the K attempts instead of ending the procedure; with none left it ends it) and when the tip has stayed in
-  // a wrong child for stuck_steps env steps (its entry already used an attempt, so this pull-back uses none). The
-  // actor is handed the wire back at the end of the pull-back. Off: every act/2 run before it, bit for bit.
+  // a wrong child for stuck_steps env steps (its entry already used an attempt, so this pull-back uses none), and,
+  // once the strict episode is over, on a standstill: neither the tip's progress nor the commanded insertion has
+  // moved stuck_progress_mm for stuck_steps env steps outside a wrong child (one attempt; with none left nothing is
+  // done). The actor is handed the wire back at the end of the pull-back. Off: every act/2 run before it, bit for
+  // bit.
   bool recovery_assist = false;
   // The act/2 reward (reward.hpp, push_pull_reward): the paper's terms earned in proportion to the forward
   // insertion, less this per env step while the tip is in a wrong child.

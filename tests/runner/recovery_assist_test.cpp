@@ -1,7 +1,8 @@
 // Assisted recovery for a push/pull actor (TaskConfig::recovery_assist, docs/recovery.md "Assisted recovery"):
 // with recovery the wrapper's pull-back steps in where an act/2 actor does not recover by itself: after a stall
 // (one of the K attempts, where without it the stall ends the procedure) and when the tip has stayed stuck_steps
-// env steps in a wrong child (no new attempt: the entry used one). The actor gets the wire back afterwards.
+// env steps in a wrong child (no new attempt: the entry used one) and, once the strict episode is over, when the
+// actor stands still (one attempt). The actor gets the wire back afterwards.
 #include <catch2/catch.hpp>
 #include <algorithm>
 
@@ -28,10 +29,10 @@ gw::TaskConfig push_pull_config(int recovery_attempts, bool assist) {
   return c;
 }
 
-gw::NavigationTask t1_task(bool assist) {
+gw::NavigationTask t1_task(bool assist, int recovery_attempts = 1) {
   static const gw::NavigationAnatomy nav =
       gw::load_navigation_anatomy(kT1 + ".stl", {1.0, std::nullopt, kT1 + ".truth.json", false});
-  gw::TaskConfig c = push_pull_config(1, assist);
+  gw::TaskConfig c = push_pull_config(recovery_attempts, assist);
   c.observation.omega_side = true;
   return gw::make_navigation_task(c, gw::default_wire_params(), {nav.anatomy});
 }
@@ -131,6 +132,55 @@ TEST_CASE("recovery assist: a stall starts a pull-back with one attempt instead 
     CHECK(ob.truncated);
     CHECK(b.recovery_attempts_used == 1);
   }
+}
+
+TEST_CASE("recovery assist: a standstill after the strict end starts a pull-back with one attempt",
+          "[runner][push_pull][recovery]") {
+  const gw::NavigationTask off = t1_task(false, 2), on = t1_task(true, 2);
+  gw::EpisodeState a = gw::reset_episode(off, 0, 1, 5), b = gw::reset_episode(on, 0, 1, 5);
+  // 40 env steps of pushing (16 mm, short of the fork), then the actor stands still: nothing is pushed, so no
+  // stall, and the strict episode runs to its step limit, the same with and without the assist.
+  auto act = [](const gw::EpisodeState& s) { return gw::Action{0.0, s.steps < 40 ? 1.0 : 0.0}; };
+  gw::StepOutcome oa, ob;
+  do {
+    oa = gw::step_episode(off, a, act(a));
+    ob = gw::step_episode(on, b, act(b));
+    REQUIRE(a.tip == b.tip);
+  } while (!oa.info.strict_end);
+  REQUIRE(ob.info.strict_end);
+  REQUIRE(oa.info.step_limit);
+  CHECK(ob.info.step_limit);  // the strict verdict, for the strict columns
+  CHECK_FALSE(ob.info.stuck);
+  // Without the assist the actor stays where it is until the procedure's time runs out.
+  CHECK_FALSE(a.retracting);
+  while (!a.done) {
+    oa = gw::step_episode(off, a, act(a));
+    CHECK_FALSE(a.retracting);
+  }
+  CHECK(oa.info.step_limit);
+  CHECK(a.recovery_attempts_used == 0);
+  // Assisted: the standstill (since step 40, longer than stuck_steps) starts a pull-back at the strict end.
+  CHECK_FALSE(ob.truncated);
+  REQUIRE(b.retracting);
+  CHECK(b.recovery_attempts_used == 1);
+  const double before = b.wire.inserted_length_mm;
+  while (b.retracting && !b.done) ob = gw::step_episode(on, b, act(b));
+  REQUIRE_FALSE(b.done);
+  CHECK(b.wire.inserted_length_mm < before - 5.0);
+  // The clock starts again at the end of the pull-back: standing still again, the second (last) attempt starts
+  // exactly stuck_steps env steps later, and with none left the actor is then left standing until time runs out.
+  const int from = b.steps;
+  while (!b.retracting && !b.done) ob = gw::step_episode(on, b, act(b));
+  REQUIRE(b.retracting);
+  CHECK(b.steps - from == on.config.stuck_steps);
+  CHECK(b.recovery_attempts_used == 2);
+  while (b.retracting && !b.done) ob = gw::step_episode(on, b, act(b));
+  while (!b.done) {
+    ob = gw::step_episode(on, b, act(b));
+    CHECK_FALSE(b.retracting);
+  }
+  CHECK(ob.info.step_limit);
+  CHECK(b.recovery_attempts_used == 2);
 }
 
 TEST_CASE("recovery assist: needs recovery attempts", "[runner][push_pull][recovery]") {

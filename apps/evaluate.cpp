@@ -92,8 +92,8 @@ int main(int argc, char** argv) {
                  "columns are the same episodes' first end, the \"with recovery\" figures the whole procedure's")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--recovery-assist", o.recovery_assist,
-               "with --recovery: a push/pull actor (act/2) is pulled back by the wrapper on a stall or after stuck_steps "
-               "env steps in a wrong child, and re-aims (docs/recovery.md \"Assisted recovery\"); rotation-only "
+               "with --recovery: a push/pull actor (act/2) is pulled back by the wrapper on a stall, after stuck_steps "
+               "env steps in a wrong child or standing still after the strict end, and re-aims (docs/recovery.md \"Assisted recovery\"); rotation-only "
                "controllers always are");
   app.add_option("--reshape-tip", o.reshape_tip_per_mm,
                  "when a procedure does not reach the target (with --recovery: after its pull-backs), withdraw the wire, "

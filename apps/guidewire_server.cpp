@@ -60,8 +60,8 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--recovery-assist", config.recovery_assist,
-               "with --recovery and --push-pull: the wrapper pulls the wire back on a stall or after stuck_steps env "
-               "steps in a wrong child (docs/recovery.md \"Assisted recovery\")");
+               "with --recovery and --push-pull: the wrapper pulls the wire back on a stall, after stuck_steps env "
+               "steps in a wrong child or standing still after the strict end (docs/recovery.md \"Assisted recovery\")");
   app.add_option("--reward-wrong-branch", config.reward_wrong_branch,
                  "--push-pull: reward lost per env step while the tip is in a wrong child")
       ->capture_default_str();

@@ -75,8 +75,8 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   bool recovery_assist = false;
   app.add_flag("--recovery-assist", recovery_assist,
-               "with --recovery and a push/pull actor (act/2): the wrapper pulls the wire back on a stall or after "
-               "stuck_steps env steps in a wrong child, and the actor re-aims (docs/recovery.md \"Assisted recovery\")");
+               "with --recovery and a push/pull actor (act/2): the wrapper pulls the wire back on a stall, after "
+               "stuck_steps env steps in a wrong child or standing still after the strict end, and the actor re-aims (docs/recovery.md \"Assisted recovery\")");
   double recovery_retract_mm = gw::TaskConfig{}.recovery_retract_mm;
   app.add_option("--recovery-retract", recovery_retract_mm,
                  "with --recovery: pull the tip back to this many mm before the centre of the bifurcation it was lost at")

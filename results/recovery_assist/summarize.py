@@ -87,6 +87,30 @@ def main():
                       f"{'; a pass cut by the wall-time step limit' if cut else ''}")
 
     every_row()
+    standstill()
+
+
+def standstill():
+    """The assist with its standstill trigger (these runs) against the assist before it (before_standstill/)."""
+    runs = [("coronary-like", "coronary_like/results.json"), ("deformed coronary", "deformed/results.json")]
+    if not os.path.isdir(os.path.join(HERE, "before_standstill")):
+        return
+    print("\nThe standstill trigger: the assist now against the assist before it, the same episodes:\n")
+    print("| row | stage | now | before | won | lost | p (sign test) |")
+    print("|---|---|---|---|---|---|---|")
+    every = [(r["name"], "every_row/results.json") for r in json.load(open(os.path.join(HERE, "every_row/results.json")))["rows"]]
+    for row, path in runs + every:
+        now = episodes(path, row, "sac-policy")
+        before = episodes(os.path.join("before_standstill", path), row, "sac-policy")
+        keys = sorted(k for k in now if k in before)
+        stages = STAGES[:2] if path.startswith("every_row") else STAGES
+        for stage, f in stages:
+            a = sum(f(now[k]) == "success" for k in keys)
+            b = sum(f(before[k]) == "success" for k in keys)
+            won = sum(f(now[k]) == "success" and f(before[k]) != "success" for k in keys)
+            lost = sum(f(now[k]) != "success" and f(before[k]) == "success" for k in keys)
+            print(f"| {row} | {stage} | {rate(a, len(keys))} | {rate(b, len(keys))} | {won} | {lost} | "
+                  f"{sign_test(won, lost):.3f} |")
 
 
 def every_row():

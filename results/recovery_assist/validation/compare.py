@@ -1,6 +1,7 @@
 """The validation-tree check of results/recovery_assist/README.md (standard library only): the navigate --json files
 beside this one. Where both runs exist (<tree>_alone.json, <tree>_assist.json) the actor alone against assisted,
-episode by episode; for every assisted run its procedures that did not reach the target, with how they ended."""
+episode by episode, and the assist against the assist before its standstill trigger (before_standstill/); for every
+assisted run its procedures that did not reach the target, with how they ended."""
 import json
 import os
 
@@ -9,8 +10,8 @@ TREES = ["rca_validation", "rca_validation_deformed", "pl_validation", "syn_vali
 STAGES = ["recovery", "reshape"]
 
 
-def load(tree, kind):
-    path = os.path.join(HERE, f"{tree}_{kind}.json")
+def load(tree, kind, folder=""):
+    path = os.path.join(HERE, folder, f"{tree}_{kind}.json")
     if not os.path.exists(path):
         return None
     return {(r["target"], r["seed"]): r for r in json.load(open(path))["results"]}
@@ -22,7 +23,7 @@ def reached(results, stage):
 
 def main():
     for tree in TREES:
-        alone, assisted = load(tree, "alone"), load(tree, "assist")
+        alone, assisted, before = load(tree, "alone"), load(tree, "assist"), load(tree, "assist", "before_standstill")
         if assisted is None:
             continue
         n = len(assisted)
@@ -33,6 +34,9 @@ def main():
             if alone is not None:
                 a, b = reached(alone, stage), reached(assisted, stage)
                 line += f", alone {len(a)}/{len(alone)}, won {len(b - a)} lost {len(a - b)}"
+            if before is not None:
+                a, b = reached(before, stage), reached(assisted, stage)
+                line += f"; before the standstill trigger {len(a)}/{len(before)}, won {len(b - a)} lost {len(a - b)}"
             print(line)
         for (target, seed), r in sorted(assisted.items()):
             if r["reshape"]["outcome"] != "success":

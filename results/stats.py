@@ -1,6 +1,7 @@
 """What the results scripts share (standard library only): the Wilson interval (z 1.96; the C++ table's
 apps/runner/success_statistics.hpp uses the exact 1.95996), the exact sign test the table uses, a success-rate cell,
 and one column's episodes of an evaluate results.json."""
+import functools
 import json
 import math
 import os
@@ -32,12 +33,20 @@ def rate(k, n):
     return f"{k}/{n} ({100 * k / n:.0f}%, {100 * lo:.0f}-{100 * hi:.0f}%)"
 
 
+@functools.lru_cache(maxsize=None)
+def _rows(path):
+    """The "rows" of the results.json at `path`, read once per script (the summaries ask for each file's rows and
+    columns one by one); callers read them, never change them."""
+    with open(path) as f:
+        return json.load(f)["rows"]
+
+
 def run_episodes(path, row, column):
     """(anatomy, target, seed) -> episode result of `column` in `row` of the evaluate results.json at `path`
     ({} when the file, the row or the column is not there)."""
     if not os.path.exists(path):
         return {}
-    for r in json.load(open(path))["rows"]:
+    for r in _rows(os.path.normpath(path)):
         if r["name"] == row and column in r["results"]:
             return {(e["anatomy"], e["target"], e["seed"]): e for e in r["results"][column]["results"]}
     return {}

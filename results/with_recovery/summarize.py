@@ -6,6 +6,7 @@ setting the table's. Its strict figures are checked episode by episode against t
 procedures with recovery are compared, controller against controller, on the same episodes with the exact sign test
 the table uses. Rows not run yet are left out.
 """
+import glob
 import json
 import os
 import sys
@@ -19,7 +20,8 @@ COLUMNS = [("sac-policy", "SAC (shipped policy)"), ("scripted-omega", "scripted 
 SAME_STRICT = ("outcome", "steps", "sim_time_s")
 # Where the table's rows were measured without recovery: the paper's ten rows, then the rows added since (the first
 # file that has a row and column is its reference).
-REFERENCES = ["../results.json", "../beating_heart/ceiling/results.json", "../junctions/separate/results.json"]
+REFERENCES = ["../results.json", "../beating_heart/ceiling/results.json", "../junctions/separate/results.json",
+              "../junctions/separate_close/results.json", "../junctions/separate_outer_50/results.json"]
 
 
 def reference(row, column):
@@ -69,6 +71,40 @@ def main():
             lost = sum(ok[b][k] and not ok[a][k] for k in keys)
             print(f"| {row} | {dict(COLUMNS)[a]} against {dict(COLUMNS)[b]} | {won} | {lost} | "
                   f"{sign_test(won, lost):.3f} |")
+    print()
+    print("Each cell: strict success -> success with recovery (mean pull-backs, mean procedure time in simulated s).")
+    print()
+    print("| row | episodes | " + " | ".join(label for _, label in COLUMNS) + " |")
+    print("|---|---|" + "---|" * len(COLUMNS))
+    for row in rows:
+        cells = []
+        for column, _ in COLUMNS:
+            run = run_episodes(path, row, column)
+            rec = [e["recovery"] for e in run.values()]
+            strict = sum(e["outcome"] == "success" for e in run.values())
+            won = sum(r["outcome"] == "success" for r in rec)
+            cells.append(f"{100 * strict / len(run):.0f}% -> {100 * won / len(run):.0f}% "
+                         f"({mean([r['attempts'] for r in rec]):.2f}, {mean([r['procedure_time_s'] for r in rec]):.1f})"
+                         if run else "-")
+        n = max((len(run_episodes(path, row, c)) for c, _ in COLUMNS), default=0)
+        print(f"| {row} | {n} | " + " | ".join(cells) + " |")
+    print()
+    print("Reached by any procedure run so far: every results.json under results/ with this row (any controller, with "
+          "or without recovery, tip reshape, force limit, assist, any actor), over this run's episodes.")
+    print()
+    print("| row | reached by some run | never reached (anatomy T target seed) | runs with this row |")
+    print("|---|---|---|---|")
+    everything = sorted(glob.glob(os.path.join(os.path.dirname(HERE), "**", "results.json"), recursive=True))
+    for row in rows:
+        keys = set().union(*(run_episodes(path, row, c).keys() for c, _ in COLUMNS))
+        reached, files = set(), 0
+        for other in everything:
+            runs = [run_episodes(other, row, c) for c, _ in COLUMNS]
+            files += any(runs)
+            reached |= {k for run in runs for k, e in run.items() if k in keys and any(
+                isinstance(x, dict) and x.get("outcome") == "success" for x in (e, e.get("recovery"), e.get("reshape")))}
+        missed = ", ".join(f"{a} T{t} s{sd}" for a, t, sd in sorted(keys - reached)) or "none"
+        print(f"| {row} | {rate(len(reached), len(keys))} | {missed} | {files} |")
 
 
 if __name__ == "__main__":

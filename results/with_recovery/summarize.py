@@ -4,7 +4,8 @@ results.json here: the results table's evaluate run with `--recovery 3` (and `--
 setting the table's. Its strict figures are checked episode by episode against the runs without recovery (REFERENCES:
 ../results.json for the paper's ten rows, the beating-heart and junction rows' own runs), and the
 procedures with recovery are compared, controller against controller, on the same episodes with the exact sign test
-the table uses. Rows not run yet are left out.
+the table uses. Then a compact strict -> with recovery table, and per row the episodes that no procedure in any
+results.json under results/ reaches. Rows not run yet are left out.
 """
 import glob
 import json

@@ -194,7 +194,7 @@ int main(int argc, char** argv) {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     summary["anatomy"] = anatomy_path;
     summary["controller"] = controller_kind == "policy" ? "sac-policy" : controller_kind;
-    if (controller_kind == "policy") summary["policy"] = policy;
+    if (controller_kind == "policy") summary["policy"] = gw::recorded_path(policy);
     const Eigen::Vector3d& inlet = nav.anatomy.graph.inlet.position;
     summary["inlet"] = {{"source", nav.inlet_source}, {"position", {inlet.x(), inlet.y(), inlet.z()}}};
     if (!nav.inlet_warning.empty()) summary["inlet"]["warning"] = nav.inlet_warning;

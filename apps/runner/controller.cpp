@@ -122,6 +122,14 @@ std::string default_policy_path() {
 
 std::string shipped_path(const std::string& relative) { return std::string(GW_SOURCE_DIR) + "/" + relative; }
 
+std::string recorded_path(const std::string& path) {
+  const std::filesystem::path p(path), source(GW_SOURCE_DIR);
+  if (!p.is_absolute()) return path;
+  const std::filesystem::path relative = p.lexically_normal().lexically_relative(source.lexically_normal());
+  if (relative.empty() || *relative.begin() == "..") return path;
+  return relative.generic_string();
+}
+
 std::string base_policy_path(const std::string& policy_path) {
   return std::filesystem::path(policy_path).replace_filename("sac_actor_base.json").string();
 }

@@ -58,6 +58,11 @@ std::string default_policy_path();
 // A file shipped in the repository, e.g. "engine/wire/aortic_035_angled.json", as an absolute path.
 std::string shipped_path(const std::string& relative);
 
+// A path as results record it (results.json settings, navigate --json): an absolute path into the source tree
+// becomes relative to it (shipped_path's inverse: "policy/trained/sac_actor.json"), so a committed result names
+// no machine's folders; any other path is kept as given.
+std::string recorded_path(const std::string& path);
+
 // The actor `evaluate` runs on the sensitivity rows, trained on sensitivity/base only (the paper's
 // section 3.1): sac_actor_base.json beside `policy_path`.
 std::string base_policy_path(const std::string& policy_path);

@@ -181,12 +181,12 @@ std::vector<Anatomy> load_row_anatomies(const EvaluationRow& row, const Evaluati
 }
 
 nlohmann::json evaluation_settings(const EvaluationOptions& o) {
-  nlohmann::json settings = {{"policy", o.policy},
-          {"base_policy", o.base_policy},
+  nlohmann::json settings = {{"policy", recorded_path(o.policy)},
+          {"base_policy", recorded_path(o.base_policy)},
           {"seed", o.seed},
           {"intermediate_target_mm", o.intermediate_target_mm},
           {"push_mm_per_s", o.push_mm_per_s},
-          {"wire", o.wire_path},
+          {"wire", recorded_path(o.wire_path)},
           {"centerlines", o.extract_centerlines ? "extracted (CGAL MCF)" : "ground truth"},
           {"episode_scale", o.episode_scale},
           {"reachability_seeds", o.reachability_seeds},
@@ -203,7 +203,11 @@ nlohmann::json evaluation_settings(const EvaluationOptions& o) {
 }
 
 nlohmann::json resumable_rows(const nlohmann::json& previous, const EvaluationOptions& o) {
-  const nlohmann::json settings = previous.value("settings", nlohmann::json::object());
+  nlohmann::json settings = previous.value("settings", nlohmann::json::object());
+  // A run written before paths were recorded relative to the source tree names them absolutely.
+  for (const char* key : {"policy", "base_policy", "wire"})
+    if (settings.contains(key) && settings[key].is_string())
+      settings[key] = recorded_path(settings[key].get<std::string>());
   if (settings.contains("merged_from"))
     throw std::invalid_argument("--resume: the results.json joins several runs (--from-json); only a run of its "
                                 "own can be resumed");

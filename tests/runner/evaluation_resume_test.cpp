@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <stdexcept>
 
+#include "apps/runner/controller.hpp"
 #include "apps/runner/evaluation_progress.hpp"
 #include "apps/runner/evaluation_table.hpp"
 
@@ -116,4 +117,33 @@ TEST_CASE("evaluate --resume refuses an earlier run of other settings and runs i
   const nlohmann::json joined = {{"rows", nlohmann::json::array()},
                                  {"settings", {{"merged_from", nlohmann::json::array({{{"run", "a.json"}}})}}}};
   CHECK_THROWS_WITH(gw::resumable_rows(joined, o), Catch::Contains("joins several runs"));
+}
+
+TEST_CASE("evaluate records the shipped files' paths relative to the source tree, and resumes a run that named them "
+          "absolutely",
+          "[runner]") {
+  const std::string source = GW_SOURCE_DIR;
+  CHECK(gw::recorded_path(source + "/policy/trained/sac_actor.json") == "policy/trained/sac_actor.json");
+  CHECK(gw::recorded_path(source + "/engine/wire/../wire/coronary_014.json") == "engine/wire/coronary_014.json");
+  CHECK(gw::recorded_path("/elsewhere/actor.json") == "/elsewhere/actor.json");    // the user's own file: as given
+  CHECK(gw::recorded_path(source + "_other/actor.json") == source + "_other/actor.json");  // a sibling, not inside
+  CHECK(gw::recorded_path("runs/actor.json") == "runs/actor.json");               // relative: as given
+  CHECK(gw::recorded_path("") == "");
+
+  gw::EvaluationOptions o = tiny_options();
+  o.policy = gw::shipped_path("policy/trained/sac_actor.json");
+  o.base_policy = gw::base_policy_path(o.policy);
+  o.wire_path = gw::shipped_path("engine/wire/coronary_014.json");
+  const nlohmann::json settings = gw::evaluation_settings(o);
+  CHECK(settings["policy"] == "policy/trained/sac_actor.json");
+  CHECK(settings["base_policy"] == "policy/trained/sac_actor_base.json");
+  CHECK(settings["wire"] == "engine/wire/coronary_014.json");
+
+  nlohmann::json previous = {{"rows", {{{"name", "t1"}}}}, {"settings", settings}};
+  previous["settings"]["policy"] = o.policy;  // as evaluate wrote it before
+  previous["settings"]["base_policy"] = o.base_policy;
+  previous["settings"]["wire"] = o.wire_path;
+  CHECK(gw::resumable_rows(previous, o).size() == 1);
+  previous["settings"]["policy"] = "/elsewhere/actor.json";
+  CHECK_THROWS_WITH(gw::resumable_rows(previous, o), Catch::Contains("policy was \"/elsewhere/actor.json\""));
 }

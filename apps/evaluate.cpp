@@ -95,11 +95,16 @@ int main(int argc, char** argv) {
                "with --recovery: a push/pull actor (act/2) is pulled back by the wrapper on a stall, after stuck_steps "
                "env steps in a wrong child or standing still after the strict end, and re-aims (docs/recovery.md \"Assisted recovery\"); rotation-only "
                "controllers always are");
-  app.add_option("--reshape-tip", o.reshape_tip_per_mm,
+  CLI::Option* reshape_option = app.add_option("--reshape-tip", o.reshape_tip_per_mm,
                  "when a procedure does not reach the target (with --recovery: after its pull-backs), withdraw the wire, "
                  "reshape its tip to this curvature (1/mm; the wire's own is 0.2) and navigate again from the inlet "
                  "(docs/recovery.md); the \"with reshape\" figures. 0 = never")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--reshape-tip-length", o.reshape_tip_length_mm,
+                 "with --reshape-tip: the reshaped tip's length, mm (the bent, softer distal part; the wire's own is 6). "
+                 "0 = the wire's own")
+      ->check(CLI::NonNegativeNumber)
+      ->needs(reshape_option);
   app.add_option("--force-limit", o.force_limit_N,
                  "withhold the forward push while the wire presses the wall harder than this many newtons at one node "
                  "(the controllers' columns; 0 = off, the paper's task; docs/recovery.md \"Force limit\")")

@@ -89,11 +89,17 @@ int main(int argc, char** argv) {
   app.add_option("--recovery-pull-speed", recovery_pull, "with --recovery: the pull-back speed, mm/s")
       ->check(CLI::PositiveNumber);
   double reshape_tip = 0.0;
-  app.add_option("--reshape-tip", reshape_tip,
+  CLI::Option* reshape_option = app.add_option("--reshape-tip", reshape_tip,
                  "when the procedure does not reach the target (with --recovery: after its pull-backs), withdraw the wire, "
                  "reshape its tip to this curvature (1/mm; the wire's own is 0.2) and navigate again from the inlet "
                  "(docs/recovery.md); the figures under \"reshape\". 0 = never")
       ->check(CLI::NonNegativeNumber);
+  double reshape_tip_length = 0.0;
+  app.add_option("--reshape-tip-length", reshape_tip_length,
+                 "with --reshape-tip: the reshaped tip's length, mm (the bent, softer distal part; the wire's own is 6). "
+                 "0 = the wire's own")
+      ->check(CLI::NonNegativeNumber)
+      ->needs(reshape_option);
   double force_limit = 0.0;
   app.add_option("--force-limit", force_limit,
                  "withhold the forward push while the wire presses the wall harder than this many newtons at one node "
@@ -183,7 +189,7 @@ int main(int argc, char** argv) {
     trace.step_time_limit_s = step_time_limit;
     std::optional<gw::NavigationTask> reshaped;
     if (reshape_tip > 0) {
-      reshaped = gw::make_reshaped_task(task, reshape_tip);
+      reshaped = gw::make_reshaped_task(task, reshape_tip, reshape_tip_length);
       trace.reshaped = &*reshaped;
     }
     trace.wire_shape_every = out_dir.empty() ? 0 : gw::wire_shape_stride(anatomy.scene.get(), config.dt_s * config.frame_skip);
@@ -209,6 +215,7 @@ int main(int argc, char** argv) {
     if (recovery > 0) summary["recovery_attempts"] = recovery;
     if (recovery_assist) summary["recovery_assist"] = true;
     if (reshape_tip > 0) summary["reshape_tip_per_mm"] = reshape_tip;
+    if (reshape_tip > 0 && reshape_tip_length > 0) summary["reshape_tip_length_mm"] = reshape_tip_length;
     if (step_time_limit > 0) summary["step_time_limit_s"] = step_time_limit;
     if (config.action != gw::ActionLayout::kRotation) summary["action_layout"] = gw::action_layout_name(config.action);
     if (!motion_source.empty())
@@ -242,7 +249,7 @@ int main(int argc, char** argv) {
                     << " pull-back(s), " << t.time_s.back() << " s simulated";
         if (!t.reshaped.empty()) {
           const nlohmann::json& r = summary["results"][k]["reshape"];
-          std::cout << "; tip reshaped to " << t.reshape_tip_per_mm << "/mm -> " << r["outcome"].get<std::string>()
+          std::cout << "; tip reshaped to " << t.reshape_tip_per_mm << "/mm over " << t.reshape_tip_length_mm << " mm -> " << r["outcome"].get<std::string>()
                     << ", " << r["procedure_time_s"].get<double>() << " s simulated in all";
         }
         std::cout << "\n";

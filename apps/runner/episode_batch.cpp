@@ -152,6 +152,7 @@ nlohmann::json reshape_result(const EpisodeTrace& t) {
   const int first_steps = static_cast<int>(t.time_s.size()) - 1;
   const double first_time = t.time_s.empty() ? 0.0 : t.time_s.back();
   nlohmann::json r = {{"tip_curvature_per_mm", t.reshape_tip_per_mm},
+                      {"tip_length_mm", t.reshape_tip_length_mm},
                       {"reshaped", !t.reshaped.empty()},
                       {"outcome", procedure_outcome(t)},
                       {"detail", procedure_detail(t)},
@@ -186,7 +187,7 @@ nlohmann::json summarize_results(const nlohmann::json& results) {
   for (const std::string& o : kTraceOutcomes) reshape_outcomes[o] = 0;
   std::vector<nlohmann::json> reshape_forces;
   int with_reshape = 0, reshape_successes = 0, reshaped = 0;
-  double reshape_time = 0, reshape_curvature = 0;
+  double reshape_time = 0, reshape_curvature = 0, reshape_length = 0;
   for (const nlohmann::json& ep : results) {
     const std::string outcome = ep.at("outcome").get<std::string>();
     successes += outcome == "success";
@@ -206,6 +207,7 @@ nlohmann::json summarize_results(const nlohmann::json& results) {
       const nlohmann::json& r = ep["reshape"];
       ++with_reshape;
       reshape_curvature = r.at("tip_curvature_per_mm").get<double>();
+      reshape_length = r.value("tip_length_mm", 0.0);  // 0: a result written before the length was recorded
       reshape_successes += r.at("outcome") == "success";
       reshaped += r.at("reshaped").get<bool>();
       const std::string o = r.at("outcome").get<std::string>();
@@ -241,6 +243,7 @@ nlohmann::json summarize_results(const nlohmann::json& results) {
                       {"outcomes", reshape_outcomes},
                       {"reshaped", reshaped},
                       {"mean_procedure_time_s", reshape_time / with_reshape}};
+    if (reshape_length > 0) out["reshape"]["tip_length_mm"] = reshape_length;
     const nlohmann::json sf = force_summary(reshape_forces);
     if (!sf.empty()) out["reshape"]["force"] = sf;
   }

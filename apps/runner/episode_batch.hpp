@@ -52,8 +52,8 @@ bool tip_folded_before_loss(const EpisodeTrace& trace);
 // "force": {mean_peak_node_N, share_peak_node_over_1_5N, mean_peak_total_N, share_peak_total_over_1_5N,
 // mean_peak_tip_N, mean_mean_total_N}, and with recovery "recovery": {attempts_allowed, episodes,
 // successes, success_rate, outcomes, mean_attempts, mean_procedure_time_s, force}, and with a tip reshape
-// (TraceOptions::reshaped) per result "reshape": {tip_curvature_per_mm, reshaped, outcome, detail, attempts, steps,
-// procedure_time_s, withdrawal_s (when reshaped), force} over both passes and "reshape": {tip_curvature_per_mm,
+// (TraceOptions::reshaped) per result "reshape": {tip_curvature_per_mm, tip_length_mm, reshaped, outcome, detail, attempts, steps,
+// procedure_time_s, withdrawal_s (when reshaped), force} over both passes and "reshape": {tip_curvature_per_mm, tip_length_mm,
 // episodes, successes, success_rate, outcomes, reshaped, mean_procedure_time_s, force}}. Outcome, steps,
 // sim_time_s and force are the paper's strict episode's (it ends where the first wrong branch or stall
 // ends it), recovery's figures the whole procedure's.

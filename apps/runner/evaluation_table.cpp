@@ -197,6 +197,7 @@ nlohmann::json evaluation_settings(const EvaluationOptions& o) {
   if (o.junctions != JunctionModel::kSeparate) settings["junctions"] = junction_model_name(o.junctions);
   if (o.step_time_limit_s > 0) settings["step_time_limit_s"] = o.step_time_limit_s;
   if (o.reshape_tip_per_mm > 0) settings["reshape_tip_per_mm"] = o.reshape_tip_per_mm;
+  if (o.reshape_tip_length_mm > 0) settings["reshape_tip_length_mm"] = o.reshape_tip_length_mm;
   if (o.force_limit_N > 0) settings["force_limit_N"] = o.force_limit_N;
   if (o.episode_count >= 0) settings["episodes"] = {o.first_episode, o.episode_count};  // a shard (issue 40)
   return settings;
@@ -311,7 +312,7 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
         std::optional<NavigationTask> reshaped;  // the controllers' columns only, as recovery
         TraceOptions column_trace = trace;
         if (o.reshape_tip_per_mm > 0) {
-          reshaped = make_reshaped_task(task, o.reshape_tip_per_mm);
+          reshaped = make_reshaped_task(task, o.reshape_tip_per_mm, o.reshape_tip_length_mm);
           column_trace.reshaped = &*reshaped;
         }
         const std::string where = label + ", " + kind + ": ";
@@ -349,6 +350,7 @@ nlohmann::json run_task_settings(const nlohmann::json& run) {
           {"recovery_assist", s.value("recovery_assist", false)},
           {"junctions", s.value("junctions", std::string(junction_model_name(JunctionModel::kSeparate)))},
           {"reshape_tip_per_mm", s.value("reshape_tip_per_mm", 0.0)},
+          {"reshape_tip_length_mm", s.value("reshape_tip_length_mm", 0.0)},
           {"force_limit_N", s.value("force_limit_N", 0.0)}};
 }
 
@@ -594,7 +596,7 @@ std::string safety_and_recovery_table(const nlohmann::json& e) {
           "procedure time (simulated) are means over the episodes, force over the whole procedure.";
   if (reshape)
     md << " With reshape: a procedure that still did not reach the target is withdrawn, the wire's tip reshaped "
-          "to the curvature given, and navigated again from the inlet (with the same recovery); reshaped: episodes "
+          "to the curvature (and length) given, and navigated again from the inlet (with the same recovery); reshaped: episodes "
           "that needed the second pass; procedure time: both passes and the withdrawal between them.";
   md << "\n\n| case | column | strict success | peak node force (N) | peak total (N) | > 1.5 N |";
   if (recovery) md << " with recovery | K | attempts | procedure time (s) | peak node (N) | peak total (N) | > 1.5 N |";
@@ -625,7 +627,9 @@ std::string safety_and_recovery_table(const nlohmann::json& e) {
           const nlohmann::json& sh = summary["reshape"];
           const nlohmann::json f = sh.value("force", nlohmann::json::object());
           md << " " << share(sh["successes"].get<int>(), sh["episodes"].get<int>()) << " | "
-             << sh["tip_curvature_per_mm"].get<double>() << " | " << sh["reshaped"].get<int>() << " | "
+             << sh["tip_curvature_per_mm"].get<double>()
+             << (sh.contains("tip_length_mm") ? ", " + fixed(sh["tip_length_mm"].get<double>(), 0) + " mm" : std::string())
+             << " | " << sh["reshaped"].get<int>() << " | "
              << fixed(sh["mean_procedure_time_s"].get<double>(), 1) << " | "
              << (f.contains("mean_peak_node_N") ? fixed(f["mean_peak_node_N"].get<double>(), 2) + " | " +
                                                       fixed(100.0 * f["share_peak_node_over_1_5N"].get<double>(), 0) + "%"

@@ -59,6 +59,7 @@ struct EvaluationOptions {
   JunctionModel junctions = JunctionModel::kSeparate;  // --junctions (task_config.hpp; issue 41)
   double step_time_limit_s = 0.0;  // --step-time-limit (run_episode.hpp, TraceOptions; 0 = none)
   double force_limit_N = 0.0;  // --force-limit F (task_config.hpp, force_limit_N; 0 = off): the controllers' columns
+  double reshape_tip_length_mm = 0.0;  // --reshape-tip-length L: the reshaped tip's length (0 = the wire's own)
   double reshape_tip_per_mm = 0.0;  // --reshape-tip C (run_episode.hpp, TraceOptions::reshaped; 0 = never): the
                                     // columns also report the procedure with a reshaped second pass ("reshape")
   // evaluate --episodes FIRST:COUNT (issue 40): run only episodes FIRST .. FIRST+COUNT-1 of each row (a
@@ -102,7 +103,7 @@ std::string target_key(const std::string& anatomy, int target);
 std::string episode_key(const nlohmann::json& episode);  // an entry of a summary's "results"
 // The settings besides the seed that a results.json's episodes depend on: {push_mm_per_s,
 // intermediate_target_mm, centerlines, wire, recovery_attempts, recovery_assist, junctions, reshape_tip_per_mm,
-// force_limit_N}
+// reshape_tip_length_mm, force_limit_N}
 // (wire: the parameter file's path as given, "" = the default). Runs that differ in one are different experiments
 // (another insertion speed, other centerlines, a recovery or force limit one has and the other not), and a table
 // joining them would mean neither. A setting a run did

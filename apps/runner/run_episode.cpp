@@ -124,6 +124,7 @@ EpisodeTrace run_episode(const NavigationTask& task, int anatomy, int target_id,
   // Tip reshape: a procedure that ended short of the target (a physics failure is not a procedure's end)
   // is withdrawn at the recovery pull speed and navigated again with the reshaped tip.
   trace.reshape_tip_per_mm = options.reshaped->wire.params.tip_curvature_per_mm;
+  trace.reshape_tip_length_mm = options.reshaped->wire.params.tip_length_mm;
   const std::string& end = procedure_outcome(trace);
   if (end == "success" || end == "diverged") return trace;
   trace.reshape_withdrawal_s =
@@ -133,11 +134,18 @@ EpisodeTrace run_episode(const NavigationTask& task, int anatomy, int target_id,
   return trace;
 }
 
-NavigationTask make_reshaped_task(const NavigationTask& task, double tip_curvature_per_mm) {
+NavigationTask make_reshaped_task(const NavigationTask& task, double tip_curvature_per_mm, double tip_length_mm) {
   if (!(tip_curvature_per_mm > 0) || !std::isfinite(tip_curvature_per_mm))
     throw std::invalid_argument("tip reshape: the curvature must be a number above 0 (1/mm), got " +
                                 std::to_string(tip_curvature_per_mm));
   WireParams wire = task.wire.params;
+  if (tip_length_mm != 0.0) {
+    if (!(tip_length_mm > 0) || !std::isfinite(tip_length_mm) || tip_length_mm >= wire.length_mm)
+      throw std::invalid_argument("tip reshape: the tip length must be 0 (the wire's own) or a number above 0 (mm) "
+                                  "shorter than the wire (" + std::to_string(wire.length_mm) + " mm), got " +
+                                  std::to_string(tip_length_mm));
+    wire.tip_length_mm = tip_length_mm;
+  }
   wire.tip_curvature_per_mm = tip_curvature_per_mm;
   return make_navigation_task(task.config, wire, task.anatomies);
 }

@@ -31,9 +31,10 @@ struct TraceOptions {
 EpisodeTrace run_episode(const NavigationTask& task, int anatomy, int target_id, std::uint64_t seed,
                          Controller& controller, const TraceOptions& options = {});
 
-// Inputs: a task and a tip curvature (1/mm). Output: the same anatomies and settings with the wire's tip
-// reshaped to that curvature (its length unchanged), for TraceOptions::reshaped. Throws
-// std::invalid_argument unless the curvature is a finite number above 0.
-NavigationTask make_reshaped_task(const NavigationTask& task, double tip_curvature_per_mm);
+// Inputs: a task, a tip curvature (1/mm) and a tip length (mm; 0 = the wire's own). Output: the same anatomies
+// and settings with the wire's tip reshaped to that curvature over that length (the bent distal part; the tip's
+// softer material goes with it), for TraceOptions::reshaped. Throws std::invalid_argument unless the curvature is
+// a finite number above 0 and the length 0 or a finite number above 0 shorter than the wire.
+NavigationTask make_reshaped_task(const NavigationTask& task, double tip_curvature_per_mm, double tip_length_mm = 0.0);
 
 }  // namespace gw

@@ -125,3 +125,32 @@ TEST_CASE("reshape: the curvature must be a number above 0", "[runner][reshape]"
   for (double bad : {0.0, -0.1, std::numeric_limits<double>::quiet_NaN()})
     CHECK_THROWS_WITH(gw::make_reshaped_task(task, bad), Catch::Contains("tip reshape: the curvature must be"));
 }
+
+TEST_CASE("reshape: the wire's own curvature over a longer tip reaches the target the first pass missed",
+          "[runner][reshape]") {
+  // pl_validation target 5 (in no row of the table), at the end of the main vessel's 0.8 mm narrowing: the
+  // wire's own tip goes the wrong way, the same curvature bent over 9 mm gets in.
+  const gw::NavigationTask task = pl_task();
+  const gw::NavigationTask longer = gw::make_reshaped_task(task, 0.2, 9.0);
+  CHECK(longer.wire.params.tip_curvature_per_mm == 0.2);
+  CHECK(longer.wire.params.tip_length_mm == 9.0);
+  gw::TraceOptions with;
+  with.reshaped = &longer;
+  auto c = gw::make_scripted_omega_controller();
+  const gw::EpisodeTrace t = gw::run_episode(task, 0, 5, 1000, *c, with);
+  REQUIRE(t.outcome != "success");
+  REQUIRE(t.reshaped.size() == 1);
+  CHECK(t.reshaped.front().outcome == "success");
+  CHECK(t.reshape_tip_length_mm == 9.0);
+  const nlohmann::json summary = gw::summarize_episodes({t});
+  CHECK(summary["results"][0]["reshape"]["tip_length_mm"] == 9.0);
+  CHECK(summary["reshape"]["tip_length_mm"] == 9.0);
+  CHECK(summary["reshape"]["successes"] == 1);
+}
+
+TEST_CASE("reshape: the tip length must be 0 or a number above 0 shorter than the wire", "[runner][reshape]") {
+  const gw::NavigationTask task = pl_task();
+  CHECK(gw::make_reshaped_task(task, 0.3, 0.0).wire.params.tip_length_mm == task.wire.params.tip_length_mm);
+  for (double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(), task.wire.params.length_mm})
+    CHECK_THROWS_WITH(gw::make_reshaped_task(task, 0.3, bad), Catch::Contains("tip reshape: the tip length must be"));
+}

@@ -249,7 +249,8 @@ int main(int argc, char** argv) {
                     << " pull-back(s), " << t.time_s.back() << " s simulated";
         if (!t.reshaped.empty()) {
           const nlohmann::json& r = summary["results"][k]["reshape"];
-          std::cout << "; tip reshaped to " << t.reshape_tip_per_mm << "/mm over " << t.reshape_tip_length_mm << " mm -> " << r["outcome"].get<std::string>()
+          std::cout << "; tip reshaped to " << t.reshape_tip_per_mm << "/mm over " << t.reshape_tip_length_mm
+                    << " mm -> " << r["outcome"].get<std::string>()
                     << ", " << r["procedure_time_s"].get<double>() << " s simulated in all";
         }
         std::cout << "\n";

@@ -65,9 +65,10 @@ struct EpisodeTrace {
                                       // force limit withheld (TaskConfig::force_limit_N; recorded only when it is on)
 
   // Tip reshape (TraceOptions::reshaped, docs/recovery.md). reshape_tip_per_mm > 0: the procedure could go on
-  // with the tip reshaped to this curvature over reshape_tip_length_mm; `reshaped` then holds the second pass (one trace, from the inlet,
-  // same seed) when the first did not reach the target, else nothing. reshape_withdrawal_s: the simulated
-  // time to pull the wire out after the first pass (its inserted length at the recovery pull speed).
+  // with the tip reshaped to this curvature over reshape_tip_length_mm; `reshaped` then holds the second pass
+  // (one trace, from the inlet, same seed) when the first did not reach the target, else nothing.
+  // reshape_withdrawal_s: the simulated time to pull the wire out after the first pass (its inserted length at
+  // the recovery pull speed).
   double reshape_tip_per_mm = 0.0;
   double reshape_tip_length_mm = 0.0;
   double reshape_withdrawal_s = 0.0;

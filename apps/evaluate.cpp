@@ -16,6 +16,7 @@
 #include "apps/runner/controller.hpp"
 #include "apps/runner/evaluation_merge.hpp"
 #include "apps/runner/evaluation_table.hpp"
+#include "apps/runner/task_options.hpp"
 #include "engine/task/anatomy.hpp"
 
 namespace {
@@ -81,20 +82,10 @@ int main(int argc, char** argv) {
   app.add_option("--centerlines", centerlines, "extract (zero-shot pipeline) | truth");
   app.add_option("--episode-scale", o.episode_scale, "multiply every row's episode count");
   app.add_option("--seed", o.seed, "episode k of a row uses seed S+k");
-  app.add_option("--intermediate-target", o.intermediate_target_mm,
-                 "trees: lambda is measured to a point this many mm past each bifurcation (0 = at the hand-over)");
-  app.add_option("--push-speed", o.push_mm_per_s,
-                 "constant insertion speed at the proximal end, mm/s (the shipped policy was trained at 10)");
   app.add_option("--wire", o.wire_path, "guidewire parameter JSON (default: the 0.014\" coronary wire the policies "
                  "were trained with)");
-  app.add_option("--recovery", o.recovery_attempts,
-                 "pull back and retry after a wrong branch or a stall, at most K times (docs/recovery.md); the strict "
-                 "columns are the same episodes' first end, the \"with recovery\" figures the whole procedure's")
-      ->check(CLI::NonNegativeNumber);
-  app.add_flag("--recovery-assist", o.recovery_assist,
-               "with --recovery: a push/pull actor (act/2) is pulled back by the wrapper on a stall, after stuck_steps "
-               "env steps in a wrong child or standing still after the strict end, and re-aims (docs/recovery.md \"Assisted recovery\"); rotation-only "
-               "controllers always are");
+  gw::TaskOptions task_options;
+  gw::add_task_options(app, task_options);
   CLI::Option* reshape_option = app.add_option("--reshape-tip", o.reshape_tip_per_mm,
                  "when a procedure does not reach the target (with --recovery: after its pull-backs), withdraw the wire, "
                  "reshape its tip to this curvature (1/mm; the wire's own is 0.2) and navigate again from the inlet "
@@ -105,14 +96,8 @@ int main(int argc, char** argv) {
                  "0 = the wire's own")
       ->check(CLI::NonNegativeNumber)
       ->needs(reshape_option);
-  app.add_option("--force-limit", o.force_limit_N,
-                 "withhold the forward push while the wire presses the wall harder than this many newtons at one node "
-                 "(the controllers' columns; 0 = off, the paper's task; docs/recovery.md \"Force limit\")")
-      ->check(CLI::NonNegativeNumber);
   app.add_option("--step-time-limit", o.step_time_limit_s, "end an episode as a timeout when one env step runs longer than this many seconds of wall time (0 = no limit, the default: with a limit an outcome can depend on the machine's load; for surfaces where the contact solver crawls)")
       ->check(CLI::NonNegativeNumber);
-  std::string junctions = "separate";
-  app.add_option("--junctions", junctions, "how a junction's wrong branches enter omega: separate (the paper's task, every table row), combined (k-way junctions and closely spaced forks aimed at together, layout obs/4) or kway (k-way junctions only, closely spaced forks apart, layout obs/6); docs/junctions.md");
   app.add_option("--threads", o.threads, "episodes run in parallel");
   app.add_option("--rows", rows_filter, "only rows whose name contains one of these comma-separated texts (coronary,var1)");
   app.add_option("--out", out_dir, "folder for results.md and results.json (both rewritten after every row, so an "
@@ -144,6 +129,7 @@ int main(int argc, char** argv) {
                  "several (runs on different --seed), join them row by row and write results.json too");
   CLI11_PARSE(app, argc, argv);
   try {
+    o.task = gw::resolve_task_config(task_options);
     if (from_json.size() == 1) {
       // The report's format changes more often than the episodes are worth re-running (43 min).
       write_markdown(read_results(from_json[0]), out_dir);
@@ -190,10 +176,7 @@ int main(int argc, char** argv) {
     }
     if (centerlines != "extract" && centerlines != "truth")
       throw std::invalid_argument("--centerlines must be 'extract' or 'truth', got '" + centerlines + "'");
-    if (o.recovery_assist && o.recovery_attempts <= 0)
-      throw std::invalid_argument("--recovery-assist needs --recovery K with K >= 1 (it pulls back within those attempts)");
     o.extract_centerlines = centerlines == "extract";
-    o.junctions = gw::parse_junction_model(junctions);
     o.progress = true;
     o.controllers = gw::split_commas(controllers);
     for (const std::string& c : o.controllers)

@@ -19,9 +19,11 @@
 #include "apps/runner/heart_motion.hpp"
 #include "apps/runner/navigation_anatomy.hpp"
 #include "apps/runner/navigation_outputs.hpp"
+#include "apps/runner/task_options.hpp"
 #include "centerline/extract/target_table.hpp"
 #include "centerline/graph/nearest_target.hpp"
 #include "engine/task/navigation_task.hpp"
+#include "engine/task/task_config_json.hpp"
 #include "engine/wire/wire_params.hpp"
 
 namespace {
@@ -43,8 +45,6 @@ int main(int argc, char** argv) {
   gw::NavigationAnatomyOptions load;
   int episodes = 1, threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   std::uint64_t seed = 0;
-  double intermediate_target_mm = gw::TaskConfig{}.intermediate_target_mm;
-  double push_mm_per_s = gw::TaskConfig{}.push_mm_per_s;
   bool json = false, list = false, no_cache = false;
   app.add_option("--anatomy,anatomy", anatomy_path, "vessel surface (.stl, .obj, .ply), millimetres")->required();
   auto* target_option = app.add_option("--target", target, "target number, 'all' or 'random' (see --list)");
@@ -62,32 +62,8 @@ int main(int argc, char** argv) {
                                        "under 2 units across is read as metres");
   app.add_option("--centerline", load.centerline_path, "use this centerline file (.json, VMTK .vtp, 3D Slicer .mrk.json) instead of extracting one");
   app.add_option("--wire", wire_path, "guidewire parameter JSON (default: 0.014\" coronary wire)");
-  app.add_option("--intermediate-target", intermediate_target_mm,
-                 "trees: lambda is measured to a point this many mm past each bifurcation (0 = at the hand-over, "
-                 "20 mm past it)");
-  app.add_option("--push-speed", push_mm_per_s,
-                 "constant insertion speed at the proximal end, mm/s (the shipped policy was trained at 10)");
-  int recovery = 0;
-  app.add_option("--recovery", recovery,
-                 "pull back and retry after a wrong branch or a stall, at most K times (docs/recovery.md; a push/pull "
-                 "actor, act/2, pulls back itself); the outcome stays the strict episode's, the procedure's is under "
-                 "\"recovery\"")
-      ->check(CLI::NonNegativeNumber);
-  bool recovery_assist = false;
-  app.add_flag("--recovery-assist", recovery_assist,
-               "with --recovery and a push/pull actor (act/2): the wrapper pulls the wire back on a stall, after "
-               "stuck_steps env steps in a wrong child or standing still after the strict end, and the actor re-aims (docs/recovery.md \"Assisted recovery\")");
-  double recovery_retract_mm = gw::TaskConfig{}.recovery_retract_mm;
-  app.add_option("--recovery-retract", recovery_retract_mm,
-                 "with --recovery: pull the tip back to this many mm before the centre of the bifurcation it was lost at")
-      ->check(CLI::Range(0.0, 200.0));
-  double recovery_turn_deg = gw::TaskConfig{}.recovery_turn_rad * 180.0 / EIGEN_PI;
-  app.add_option("--recovery-turn", recovery_turn_deg,
-                 "with --recovery: pull-back k turns the proximal end by k times this many degrees")
-      ->check(CLI::Range(0.0, 360.0));
-  double recovery_pull = gw::TaskConfig{}.recovery_pull_mm_per_s;
-  app.add_option("--recovery-pull-speed", recovery_pull, "with --recovery: the pull-back speed, mm/s")
-      ->check(CLI::PositiveNumber);
+  gw::TaskOptions task_options;
+  gw::add_task_options(app, task_options);
   double reshape_tip = 0.0;
   CLI::Option* reshape_option = app.add_option("--reshape-tip", reshape_tip,
                  "when the procedure does not reach the target (with --recovery: after its pull-backs), withdraw the wire, "
@@ -100,18 +76,9 @@ int main(int argc, char** argv) {
                  "0 = the wire's own")
       ->check(CLI::NonNegativeNumber)
       ->needs(reshape_option);
-  double force_limit = 0.0;
-  app.add_option("--force-limit", force_limit,
-                 "withhold the forward push while the wire presses the wall harder than this many newtons at one node "
-                 "(0 = off, the paper's task; docs/recovery.md \"Force limit\")")
-      ->check(CLI::NonNegativeNumber);
   double step_time_limit = 0.0;
   app.add_option("--step-time-limit", step_time_limit, "end an episode as a timeout when one env step runs longer than this many seconds of wall time (0 = no limit, the default: with a limit an outcome can depend on the machine's load; for surfaces where the contact solver crawls)")
       ->check(CLI::NonNegativeNumber);
-  std::string junctions = "separate";
-  app.add_option("--junctions", junctions, "how a junction's wrong branches enter omega: separate (the paper's task, every table row), combined (k-way junctions and closely spaced forks aimed at together, layout obs/4) or kway (k-way junctions only, closely spaced forks apart, layout obs/6); docs/junctions.md");
-  std::string task_scale = "auto";
-  app.add_option("--task-scale", task_scale, "the wrong-branch and control-zone lengths in millimetres (fixed: the paper's, set for coronaries) or from the vessel's walls (vessel: a wrong branch is entered past its ostium, inside its lumen); auto = vessel for an inlet wider than 4 mm in radius (docs/vessel_scale.md)");
   gw::HeartSettings heart;
   app.add_option("--heart-rate", heart.heart_rate_bpm,
                  "the vessel beats at this rate, bpm (0 = static; docs/beating_heart.md): its wall and centerline "
@@ -129,6 +96,7 @@ int main(int argc, char** argv) {
     if (app.count("--scale") && (!(load.scale > 0) || !std::isfinite(load.scale)))
       throw std::invalid_argument("--scale must be a positive number");
     const auto start = std::chrono::steady_clock::now();
+    gw::TaskConfig config = gw::resolve_task_config(task_options);  // a bad --task fails before the mesh loads
     if (!inlet_text.empty()) load.inlet = parse_point(inlet_text);
     load.use_cache = !no_cache;
     const gw::NavigationAnatomy nav = gw::load_navigation_anatomy(anatomy_path, load);
@@ -143,7 +111,7 @@ int main(int argc, char** argv) {
                 << " mm in radius, far above the default 0.014\" coronary wire's range (about 0.8-2 mm); for an aorta "
                    "try --wire "
                 << gw::shipped_path("engine/wire/aortic_035_angled.json") << " (0.035\" angled-tip wire)\n";
-    if (task_scale == "auto" && inlet_radius > gw::TaskConfig{}.wide_vessel_radius_mm)
+    if (config.task_scale == gw::TaskScale::kAuto && inlet_radius > gw::TaskConfig{}.wide_vessel_radius_mm)
       std::cerr << "note: " << anatomy_path << ": wide inlet, so a wrong branch counts once the tip is inside it past its "
                    "ostium and the policy acts within 20 mm of the parent's wall (--task-scale vessel; fixed = the "
                    "paper's millimetres; docs/vessel_scale.md)\n";
@@ -157,18 +125,7 @@ int main(int argc, char** argv) {
     }
     // Fail on the policy before the simulation starts: a missing or mismatched file is a user error.
     auto make_controller = [&] { return gw::make_controller(controller_kind, policy); };
-    gw::TaskConfig config;
-    config.observation.junctions = gw::parse_junction_model(junctions);
-    config.task_scale = gw::parse_task_scale(task_scale);
-    make_controller()->adapt(config);  // an actor trained on the paper's omega gets the paper's omega
-    config.intermediate_target_mm = intermediate_target_mm;
-    config.push_mm_per_s = push_mm_per_s;  // make_navigation_task refuses a speed that is not > 0
-    config.recovery_attempts = recovery;
-    config.recovery_retract_mm = recovery_retract_mm;
-    config.recovery_turn_rad = recovery_turn_deg * EIGEN_PI / 180.0;
-    config.recovery_pull_mm_per_s = recovery_pull;
-    config.recovery_assist = recovery_assist;
-    config.force_limit_N = force_limit;
+    make_controller()->adapt(config);  // the actor's observation and action layouts (an obs/1 actor: the paper's omega)
 
     const gw::WireParams wire = wire_path.empty() ? gw::default_wire_params() : gw::load_wire_params(wire_path);
     gw::Anatomy anatomy = nav.anatomy;
@@ -209,11 +166,12 @@ int main(int argc, char** argv) {
                              {"targets", nav.anatomy.graph.targets.size()},
                              {"bifurcations", nav.anatomy.graph.bifurcations.size()}};
     if (!nav.intake_report.empty()) summary["intake"] = nlohmann::json::parse(nav.intake_report);
-    summary["intermediate_target_mm"] = intermediate_target_mm;
-    summary["push_mm_per_s"] = push_mm_per_s;
+    summary["task"] = gw::task_config_to_json(config);
+    summary["intermediate_target_mm"] = config.intermediate_target_mm;
+    summary["push_mm_per_s"] = config.push_mm_per_s;
     summary["task_scale"] = task.courses.at(0).at(0).vessel_scale ? "vessel" : "fixed";  // --task-scale, resolved
-    if (recovery > 0) summary["recovery_attempts"] = recovery;
-    if (recovery_assist) summary["recovery_assist"] = true;
+    if (config.recovery_attempts > 0) summary["recovery_attempts"] = config.recovery_attempts;
+    if (config.recovery_assist) summary["recovery_assist"] = true;
     if (reshape_tip > 0) summary["reshape_tip_per_mm"] = reshape_tip;
     if (reshape_tip > 0 && reshape_tip_length > 0) summary["reshape_tip_length_mm"] = reshape_tip_length;
     if (step_time_limit > 0) summary["step_time_limit_s"] = step_time_limit;

@@ -21,6 +21,7 @@
 #include "apps/runner/reachability.hpp"
 #include "apps/runner/success_statistics.hpp"
 #include "engine/task/navigation_task.hpp"
+#include "engine/task/task_config_json.hpp"
 #include "engine/wire/wire_params.hpp"
 
 namespace gw {
@@ -184,22 +185,24 @@ nlohmann::json evaluation_settings(const EvaluationOptions& o) {
   nlohmann::json settings = {{"policy", recorded_path(o.policy)},
           {"base_policy", recorded_path(o.base_policy)},
           {"seed", o.seed},
-          {"intermediate_target_mm", o.intermediate_target_mm},
-          {"push_mm_per_s", o.push_mm_per_s},
+          {"intermediate_target_mm", o.task.intermediate_target_mm},
+          {"push_mm_per_s", o.task.push_mm_per_s},
           {"wire", recorded_path(o.wire_path)},
           {"centerlines", o.extract_centerlines ? "extracted (CGAL MCF)" : "ground truth"},
           {"episode_scale", o.episode_scale},
           {"reachability_seeds", o.reachability_seeds},
           {"controllers", o.controllers}};
   // Only when on, so the results.json files written before recovery existed resume as before.
-  if (o.recovery_attempts > 0) settings["recovery_attempts"] = o.recovery_attempts;
-  if (o.recovery_assist) settings["recovery_assist"] = true;
-  if (o.junctions != JunctionModel::kSeparate) settings["junctions"] = junction_model_name(o.junctions);
+  if (o.task.recovery_attempts > 0) settings["recovery_attempts"] = o.task.recovery_attempts;
+  if (o.task.recovery_assist) settings["recovery_assist"] = true;
+  if (o.task.observation.junctions != JunctionModel::kSeparate)
+    settings["junctions"] = junction_model_name(o.task.observation.junctions);
   if (o.step_time_limit_s > 0) settings["step_time_limit_s"] = o.step_time_limit_s;
   if (o.reshape_tip_per_mm > 0) settings["reshape_tip_per_mm"] = o.reshape_tip_per_mm;
   if (o.reshape_tip_length_mm > 0) settings["reshape_tip_length_mm"] = o.reshape_tip_length_mm;
-  if (o.force_limit_N > 0) settings["force_limit_N"] = o.force_limit_N;
+  if (o.task.force_limit_N > 0) settings["force_limit_N"] = o.task.force_limit_N;
   if (o.episode_count >= 0) settings["episodes"] = {o.first_episode, o.episode_count};  // a shard (issue 40)
+  settings["task"] = task_config_to_json(o.task);  // every field (the keys above are kept for older readers)
   return settings;
 }
 
@@ -214,7 +217,8 @@ nlohmann::json resumable_rows(const nlohmann::json& previous, const EvaluationOp
                                 "own can be resumed");
   const nlohmann::json now = evaluation_settings(o);
   for (const auto& [key, value] : now.items())
-    if (!settings.contains(key) || settings[key] != value)
+    if ((key != "task" || settings.contains(key)) &&  // runs before the task JSON: their keys above say it
+        (!settings.contains(key) || settings[key] != value))
       throw std::invalid_argument("--resume: the earlier run's " + key + " was " +
                                   (settings.contains(key) ? settings[key].dump() : std::string("not recorded")) +
                                   ", this run's is " + value.dump() +
@@ -278,10 +282,10 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
     const std::string policy = row_policy(row);
     try {
       const std::vector<Anatomy> anatomies = load_row_anatomies(row, o);
-      TaskConfig base_config;
-      base_config.intermediate_target_mm = o.intermediate_target_mm;
-      base_config.push_mm_per_s = o.push_mm_per_s;
-      base_config.observation.junctions = o.junctions;
+      TaskConfig base_config = o.task;  // strict: the draw and the probes
+      base_config.recovery_attempts = 0;
+      base_config.recovery_assist = false;
+      base_config.force_limit_N = 0.0;
       const NavigationTask default_task = make_navigation_task(base_config, wire, anatomies);
       const auto [first, end] = shard_range(row);
       const std::vector<EpisodeRequest> all_requests = row_requests(default_task, end, o.seed);
@@ -300,9 +304,9 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
         auto make = [&] { return make_controller(kind, policy); };
         TaskConfig config = base_config;
         make()->adapt(config);  // an actor trained on the paper's omega (obs/1) is evaluated with it
-        config.recovery_attempts = o.recovery_attempts;  // the controllers' columns only: probes stay strict
-        config.recovery_assist = o.recovery_assist && config.recovery_attempts > 0;
-        config.force_limit_N = o.force_limit_N;
+        config.recovery_attempts = o.task.recovery_attempts;  // the controllers' columns only: probes stay strict
+        config.recovery_assist = o.task.recovery_assist;
+        config.force_limit_N = o.task.force_limit_N;
         std::optional<NavigationTask> adapted;
         if (config.observation.omega_plane != default_task.config.observation.omega_plane ||
             config.observation.junctions != default_task.config.observation.junctions ||

@@ -51,14 +51,12 @@ struct EvaluationOptions {
   // Targets that no controller of a row reached are probed with the rotation schedules
   // (reachability.hpp) from this many seeds each; 0 = do not probe.
   int reachability_seeds = 2;
-  double intermediate_target_mm = TaskConfig{}.intermediate_target_mm;  // trees (task_config.hpp)
-  double push_mm_per_s = TaskConfig{}.push_mm_per_s;                    // insertion speed (task_config.hpp)
+  // The task (evaluate's --task and task flags, apps/runner/task_options.hpp). The controllers' columns run it as
+  // it is, each with its actor's layouts (Controller::adapt); the episodes' draw and the reachability probes run it
+  // strict: without recovery and force limit.
+  TaskConfig task;
   std::string wire_path;                                                // wire parameter JSON ("" = the 0.014" wire)
-  int recovery_attempts = 0;  // --recovery K (task_config.hpp): the columns also report the procedure with recovery
-  bool recovery_assist = false;  // --recovery-assist (task_config.hpp, recovery_assist): with recovery, act/2 columns
-  JunctionModel junctions = JunctionModel::kSeparate;  // --junctions (task_config.hpp; issue 41)
   double step_time_limit_s = 0.0;  // --step-time-limit (run_episode.hpp, TraceOptions; 0 = none)
-  double force_limit_N = 0.0;  // --force-limit F (task_config.hpp, force_limit_N; 0 = off): the controllers' columns
   double reshape_tip_length_mm = 0.0;  // --reshape-tip-length L: the reshaped tip's length (0 = the wire's own)
   double reshape_tip_per_mm = 0.0;  // --reshape-tip C (run_episode.hpp, TraceOptions::reshaped; 0 = never): the
                                     // columns also report the procedure with a reshaped second pass ("reshape")

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "engine/scene/wall_motion.hpp"
+#include "engine/task/task_config_json.hpp"
 
 namespace gw {
 
@@ -94,33 +95,7 @@ std::string spec_json(const NavigationTask& task) {
               {"names", names}}},
             {"action_space", action_space},
             {"anatomies", anatomies},
-            {"task",
-             {{"dt_s", c.dt_s},
-              {"frame_skip", c.frame_skip},
-              {"env_dt_s", c.dt_s * c.frame_skip},
-              {"push_mm_per_s", c.push_mm_per_s},
-              {"max_rotation_rad_per_s", c.max_rotation_rad_per_s},
-              {"control_mode", control_mode_name(c.control_mode)},
-              {"omega_plane", omega_plane_name(c.observation.omega_plane)},
-              {"omega_side", c.observation.omega_side},
-              {"junctions", junction_model_name(c.observation.junctions)},
-              {"task_scale", task_scale_name(c.task_scale)},
-              {"reward", {{"omega_centre", c.reward.omega_centre}, {"omega_slope", c.reward.omega_slope}}},
-              {"roll_disturbance", {{"probability", c.roll_disturbance_probability},
-                                    {"min_rad", c.roll_disturbance_min_rad},
-                                    {"max_rad", c.roll_disturbance_max_rad}}},
-              {"random_start", {{"probability", c.random_start_probability},
-                                {"margin_mm", c.random_start_margin_mm}}},
-              {"control_radius_mm", c.control_radius_mm},
-              {"intermediate_target_mm", c.intermediate_target_mm},
-              {"success_radius_mm", c.success_radius_mm},
-              {"recovery_attempts", c.recovery_attempts},
-              {"recovery_assist", c.recovery_assist},
-              {"reward_wrong_branch", c.reward_wrong_branch},
-              {"reward_time_per_step", c.reward_time_per_step},
-              {"reward_force_per_N", c.reward_force_per_N},
-              {"force_limit_N", c.force_limit_N},
-              {"reward_aim", reward_aim_name(c.reward_aim)}}}};
+            {"task", task_config_to_json(c)}};  // the whole task: a client may send it back as --task
   return j.dump();
 }
 

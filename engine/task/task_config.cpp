@@ -60,7 +60,8 @@ void check_task_config(const TaskConfig& c) {
   require((c.action == ActionLayout::kRotationInsertion) == c.observation.push_pull, "observation",
           "obs/5 or obs/7 (with the insertion and wrong-branch entries) exactly when the action is act/2 (push/pull)");
   require(c.reward_force_per_N >= 0 && std::isfinite(c.reward_force_per_N), "reward_force_per_N", ">= 0 (0 = off)");
-  require(!c.recovery_assist || c.recovery_attempts > 0, "recovery_assist", "used with recovery_attempts > 0");
+  require(!c.recovery_assist || c.recovery_attempts > 0, "recovery_assist (--recovery-assist)",
+          "used with recovery_attempts > 0 (--recovery K: the assist pulls back within those K attempts)");
   require(c.force_limit_N >= 0 && std::isfinite(c.force_limit_N), "force_limit_N", ">= 0 (0 = off)");
 }
 

@@ -52,12 +52,14 @@ struct TaskConfig {
   double lookahead_mm = 4.0;             // h: centerline tangent c_i taken h ahead of each sample
   double branch_direction_mm = 6.0;      // c and w (omega) = directions from a bifurcation centre to
                                          // the points this far along the correct / wrong child
-  ObservationLayout observation;         // omega's plane, omega's sine, junctions (observation_layout.hpp);
-                                         // default obs/2, the paper's entries with omega in the approach plane
+  ObservationLayout observation{OmegaPlane::kApproach, true};  // omega's plane, omega's sine, junctions
+                                         // (observation_layout.hpp); default obs/3, the shipped actor's (the paper's
+                                         // is obs/1: docs/task_settings.md)
   double max_abs_speed_ratio = 5.0;      // s = v.c / push is clipped to +-this (bounded obs space)
   double max_lambda_ratio = 4.0;         // lambda_t / lambda_0 is clipped to [0, this]
   // --- Reward (reward.hpp) ---
-  RewardShape reward;                    // orientation sigmoid; default = paper Eq. 3
+  RewardShape reward{-0.5, 8.0};         // orientation sigmoid: centre -0.5, slope 8, the shipped actors' (the paper's
+                                         // Eq. 3 is centre 0.1, slope 5: RewardShape's own default; reward.hpp says why)
   // --- Episode end ---
   double success_radius_mm = 4.0;        // tip within this distance of the target = success
   double wrong_branch_depth_mm = 4.0;    // failure once the tip is this far along a wrong child and
@@ -137,12 +139,12 @@ struct TaskConfig {
   // The act/2 reward (reward.hpp, push_pull_reward): the paper's terms earned in proportion to the forward
   // insertion, less this per env step while the tip is in a wrong child.
   double reward_wrong_branch = 1.0;
-  // ... and less this every env step (a cost of time; 0 = the first push/pull run's reward; the shipped
-  // push/pull actor was trained with 0.25). Without it stopping is free (reward.hpp says why that matters).
-  double reward_time_per_step = 0.0;
-  // ... and how it pays for the aim: the orientation term times new depth (kByDepth, every push/pull run before the
-  // shipped one) or its change over each step (kByChange, the shipped push/pull actor's; reward.hpp says why).
-  RewardAim reward_aim = RewardAim::kByDepth;
+  // ... and less this every env step (a cost of time; 0.25 = the shipped push/pull actor's, 0 = the first push/pull
+  // run's reward). Without it stopping is free (reward.hpp says why that matters).
+  double reward_time_per_step = 0.25;
+  // ... and how it pays for the aim: its change over each step (kByChange, the shipped push/pull actor's, the
+  // default) or the orientation term times new depth (kByDepth, every push/pull run before it; reward.hpp says why).
+  RewardAim reward_aim = RewardAim::kByChange;
   // --- Force penalty (issue 37 item 4; 0 = the paper's reward, Eq. 3) ---
   // Each env step's reward loses this times the step's peak total wall force in newtons (StepInfo::
   // wall_force_peak_total_mN / 1000): a wire pressed on the wall at 1.5 N (the vessel-rupture threshold

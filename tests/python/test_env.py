@@ -25,7 +25,7 @@ def env(server_bin):
 
 
 def test_spaces_follow_the_spec(env):
-    assert env.observation_space.shape == (11,)
+    assert env.observation_space.shape == (12,)  # the default task: the shipped actor's obs/3
     assert env.action_space.shape == (1,)
     assert env.observation_space.dtype == np.float32
     assert env.observation_names[9] == "omega"
@@ -126,7 +126,7 @@ def test_omega_plane_is_chosen_at_the_server_and_reported(server_bin):
     paper = GuidewireEnv(anatomies="t3_out_of_plane_steep", options={"target": 1},
                          server_args=["--omega-plane", "correct_branch"])
     try:
-        assert ours.spec_reply["obs_layout"] == "guidewire-nav/obs/2"
+        assert ours.spec_reply["obs_layout"] == "guidewire-nav/obs/3"
         assert paper.spec_reply["obs_layout"] == "guidewire-nav/obs/1"
         a, _ = ours.reset(seed=4)
         b, _ = paper.reset(seed=4)
@@ -144,7 +144,7 @@ def test_force_cost_is_chosen_at_the_server_and_changes_only_the_reward(server_b
     # Same seed, same actions: the observations agree, and the costed reward is lower by the coefficient times
     # the step's peak total wall force (the info's wall_force_peak_total_mN), never higher.
     plain = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1})
-    costly = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1}, server_args=["--reward-force", "2"])
+    costly = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1}, server_args=["--task", '{"reward_force_per_N": 2}'])
     try:
         assert plain.spec_reply["task"]["reward_force_per_N"] == 0.0
         assert costly.spec_reply["task"]["reward_force_per_N"] == 2.0
@@ -163,7 +163,7 @@ def test_force_cost_is_chosen_at_the_server_and_changes_only_the_reward(server_b
         plain.close()
         costly.close()
     with pytest.raises(Exception):
-        GuidewireEnv(anatomies="t1_straight_y", server_args=["--reward-force", "-1"])
+        GuidewireEnv(anatomies="t1_straight_y", server_args=["--task", '{"reward_force_per_N": -1}'])
 
 
 def test_force_limit_is_chosen_at_the_server_and_backs_the_wire_off(server_bin):
@@ -193,9 +193,9 @@ def test_force_limit_is_chosen_at_the_server_and_backs_the_wire_off(server_bin):
 
 def test_reward_shape_is_chosen_at_the_server_and_changes_only_the_reward(server_bin):
     # Same seed, same actions: the observations agree, the rewards follow each server's sigmoid.
-    paper = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1})
-    steep = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1},
-                         server_args=["--reward-omega-centre", "-0.5", "--reward-omega-slope", "8"])
+    paper = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1},
+                         server_args=["--task", '{"reward": {"omega_centre": 0.1, "omega_slope": 5}}'])
+    steep = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1})  # the default: the shipped actor's
     try:
         assert paper.spec_reply["task"]["reward"] == {"omega_centre": 0.1, "omega_slope": 5.0}
         assert steep.spec_reply["task"]["reward"] == {"omega_centre": -0.5, "omega_slope": 8.0}
@@ -245,10 +245,10 @@ def test_roll_disturbance_is_a_server_setting_and_changes_the_episode(server_bin
     # Off (the paper's task) unless asked for; at probability 1 the same seed and actions drift apart
     # once the unannounced twist starts, and the observation's action stays the agent's own.
     plain = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1})
-    rolled = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1}, server_args=["--roll-disturbance", "1"])
+    rolled = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1}, server_args=["--task", '{"roll_disturbance_probability": 1}'])
     try:
-        assert plain.spec_reply["task"]["roll_disturbance"]["probability"] == 0.0
-        assert rolled.spec_reply["task"]["roll_disturbance"]["probability"] == 1.0
+        assert plain.spec_reply["task"]["roll_disturbance_probability"] == 0.0
+        assert rolled.spec_reply["task"]["roll_disturbance_probability"] == 1.0
         a, _ = plain.reset(seed=3)
         b, _ = rolled.reset(seed=3)
         assert np.array_equal(a, b)
@@ -268,10 +268,10 @@ def test_random_start_is_a_server_setting_and_starts_part_way_on_the_wall_anatom
     # Off unless asked for; at probability 1 resets push the wire (against the real wall) part-way
     # to the bifurcation, lambda is measured from there (ratio 1) and the episode runs on as usual.
     plain = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1})
-    pushed = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1}, server_args=["--random-start", "1"])
+    pushed = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1}, server_args=["--task", '{"random_start_probability": 1}'])
     try:
-        assert plain.spec_reply["task"]["random_start"]["probability"] == 0.0
-        assert pushed.spec_reply["task"]["random_start"]["probability"] == 1.0
+        assert plain.spec_reply["task"]["random_start_probability"] == 0.0
+        assert pushed.spec_reply["task"]["random_start_probability"] == 1.0
         deeper = 0
         for seed in range(6):
             _, a = plain.reset(seed=seed)
@@ -289,8 +289,10 @@ def test_random_start_is_a_server_setting_and_starts_part_way_on_the_wall_anatom
 
 def test_omega_side_adds_a_twelfth_entry_and_changes_nothing_else(server_bin):
     # obs/3 = obs/2 plus omega's sine: same episode, same actions, the first 11 entries bit for bit.
-    plain = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1})
+    plain = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1},
+                         server_args=["--task", '{"observation": "guidewire-nav/obs/2"}'])
     side = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1}, server_args=["--omega-side"])
+    assert plain.spec_reply["obs_layout"] == "guidewire-nav/obs/2"
     try:
         assert side.spec_reply["obs_layout"] == "guidewire-nav/obs/3"
         assert side.observation_space.shape == (12,) and side.observation_names[-1] == "omega_side"
@@ -314,7 +316,7 @@ def test_combined_junctions_are_layout_obs4_and_change_nothing_on_a_two_way_fork
                             server_args=["--omega-side", "--junctions", "combined"])
     try:
         assert combined.spec_reply["obs_layout"] == "guidewire-nav/obs/4"
-        assert combined.spec_reply["task"]["junctions"] == "combined"
+        assert combined.spec_reply["task"]["observation"]["junctions"] == "combined"
         a, _ = side.reset(seed=5)
         b, _ = combined.reset(seed=5)
         for _ in range(40):
@@ -339,7 +341,8 @@ def test_push_pull_is_layouts_obs5_act2_and_holds_the_wire_when_stopped(server_b
         assert pp.action_space.shape == (2,) and pp.observation_space.shape == (14,)
         assert pp.observation_names[-2:] == ["insertion", "wrong_branch"]
         pp7 = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1},
-                           server_args=["--push-pull", "--since-progress", "--recovery", "1", "--recovery-assist"])
+                           server_args=["--task", '{"observation": "guidewire-nav/obs/7"}', "--push-pull", "--recovery",
+                                        "1", "--recovery-assist"])
         try:
             assert pp7.spec_reply["obs_layout"] == "guidewire-nav/obs/7"
             assert pp7.spec_reply["task"]["recovery_assist"] is True  # docs/recovery.md "Assisted recovery"

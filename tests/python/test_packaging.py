@@ -70,8 +70,9 @@ def test_train_flags_follow_the_settings():
     assert set(flags) == set(Settings.__dataclass_fields__)
     assert all(a.help and a.help.strip() for a in flags.values())
     assert parse_settings([]) == Settings()
-    s = parse_settings(["--total-steps", "300", "--no-progress", "--omega-side", "--actor-learning-rate", "1e-5"])
-    assert (s.total_steps, s.progress, s.omega_side, s.actor_learning_rate) == (300, False, True, 1e-5)
+    s = parse_settings(["--total-steps", "300", "--no-progress", "--task", "training/tasks/paper.json",
+                        "--actor-learning-rate", "1e-5"])
+    assert (s.total_steps, s.progress, s.task, s.actor_learning_rate) == (300, False, "training/tasks/paper.json", 1e-5)
 
 
 def test_train_defines_no_class_inside_main():

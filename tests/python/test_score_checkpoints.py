@@ -52,11 +52,16 @@ def test_a_runs_layout_follows_its_settings():
     if not find_server_binary().is_file():
         pytest.skip("guidewire-server not built; set GW_SERVER_BIN or GW_BUILD_DIR")
 
+    # runs since --task: their task JSON ({} = the defaults, the shipped actor's obs/3)
+    assert score_checkpoints.run_layout({"task": ""}) == "guidewire-nav/obs/3"
+    assert score_checkpoints.run_layout({"task": '{"observation": "guidewire-nav/obs/1"}'}) == "guidewire-nav/obs/1"
+    assert score_checkpoints.run_layout({"task": "training/tasks/push_pull.json"}) == "guidewire-nav/obs/5"
+    # runs before it (settings.json with the observation flags)
     assert score_checkpoints.run_layout({}) == "guidewire-nav/obs/2"
     assert score_checkpoints.run_layout({"omega_plane": "correct_branch"}) == "guidewire-nav/obs/1"
     assert score_checkpoints.run_layout({"omega_plane": "approach", "omega_side": True}) == "guidewire-nav/obs/3"
-    assert "--omega-side" in server_args(Settings(omega_side=True))
-    assert "--omega-side" not in server_args(Settings())
     assert score_checkpoints.run_layout({"omega_side": True, "junctions": "combined"}) == "guidewire-nav/obs/4"
-    args = server_args(Settings(junctions="combined"))
-    assert args[args.index("--junctions") + 1] == "combined"
+    # the servers get the task JSON as it is, one argument
+    args = server_args(Settings(task='{"observation": {"junctions": "combined"}}'))
+    assert args == ["--task", '{"observation":{"junctions":"combined"}}']
+    assert server_args(Settings()) == []

@@ -41,9 +41,9 @@ def test_spec_reset_step_close(server):
     c = Conn(port)
     spec = c.ask(b'{"cmd":"spec"}')
     assert spec["ok"] and spec["protocol"] == "guidewire-nav/protocol/1"
-    assert spec["observation_space"]["shape"] == [11] and spec["action_space"]["shape"] == [1]
+    assert spec["observation_space"]["shape"] == [12] and spec["action_space"]["shape"] == [1]  # obs/3
     r = c.ask(b'{"cmd":"reset","seed":3,"options":{"target":1}}')
-    assert r["ok"] and len(r["obs"]) == 11 and r["info"]["target"] == 1
+    assert r["ok"] and len(r["obs"]) == 12 and r["info"]["target"] == 1
     s = c.ask(b'{"cmd":"step","action":[0.5]}')
     assert s["ok"] and set(s) >= {"obs", "reward", "terminated", "truncated", "info"}
     assert c.ask(b'{"cmd":"close"}') == {"ok": True}

@@ -53,8 +53,9 @@ def test_exported_actor_matches_sb3_through_policy_run(smoke_run):
     from stable_baselines3 import SAC
 
     actor = json.loads((smoke_run / "actor.json").read_text())
-    assert actor["obs_layout"] == "guidewire-nav/obs/2"
+    assert actor["obs_layout"] == "guidewire-nav/obs/3"  # the default task: the shipped actor's
     assert actor["training_settings"]["steps"] >= 200
+    assert actor["training_settings"]["task_settings"]["format"] == "guidewire-nav/task/1"
     model = SAC.load(smoke_run / "best_model.zip", device="cpu")
     rng = np.random.default_rng(3)
     low, high = model.observation_space.low, model.observation_space.high
@@ -130,7 +131,7 @@ def test_wall_time_budget_stops_training_and_still_exports(tmp_path):
     assert 0 < summary["steps"] < 5000  # a run without the budget would reach 5000 (minutes)
     assert summary["final_eval"] is None and summary["best_success_rate"] is None
     assert not (tmp_path / "evaluations.jsonl").exists()
-    assert json.loads((tmp_path / "actor.json").read_text())["obs_layout"] == "guidewire-nav/obs/2"
+    assert json.loads((tmp_path / "actor.json").read_text())["obs_layout"] == "guidewire-nav/obs/3"
 
 
 def test_fine_tuning_starts_from_the_given_networks(smoke_run, tmp_path):
@@ -143,7 +144,8 @@ def test_fine_tuning_starts_from_the_given_networks(smoke_run, tmp_path):
 
     start = SAC.load(smoke_run / "final_model.zip", device="cpu")
     argv = ["--out", str(tmp_path), "--anatomies", "t1_straight_y", "--total-steps", "60", "--learning-starts", "1000",
-            "--envs", "1", "--eval-episodes", "0", "--roll-disturbance", "0.5", "--random-start", "0.5",
+            "--envs", "1", "--eval-episodes", "0",
+            "--task", '{"roll_disturbance_probability": 0.5, "random_start_probability": 0.5}',
             "--no-progress", "--init-model", str(smoke_run / "final_model.zip")]
     assert train.main(argv) == 0
     tuned = SAC.load(tmp_path / "final_model.zip", device="cpu")
@@ -151,18 +153,11 @@ def test_fine_tuning_starts_from_the_given_networks(smoke_run, tmp_path):
     for a, b in zip(start.actor.parameters(), tuned.actor.parameters()):
         assert torch.equal(a, b)
     settings = json.loads((tmp_path / "settings.json").read_text())
-    assert settings["roll_disturbance"] == 0.5 and settings["init_model"].endswith("final_model.zip")
-    assert settings["random_start"] == 0.5
-    args = train.server_args(train.Settings(random_start=0.5))
-    assert args[args.index("--random-start") + 1] == "0.5"
-    pushed = train.server_args(train.Settings(push_speed=5.0))
-    assert pushed[pushed.index("--push-speed") + 1] == "5.0"
-    costly = train.server_args(train.Settings(reward_force=0.2))
-    assert costly[costly.index("--reward-force") + 1] == "0.2"
-    assert "--reward-force" not in train.server_args(train.Settings())  # off: the server's default, the paper's
-    limited = train.server_args(train.Settings(force_limit=1.5))
-    assert limited[limited.index("--force-limit") + 1] == "1.5"
-    assert "--force-limit" not in train.server_args(train.Settings())
+    assert settings["init_model"].endswith("final_model.zip")
+    # the run records the whole task its servers ran: the --task keys, and the defaults for the rest
+    assert settings["task_settings"]["roll_disturbance_probability"] == 0.5
+    assert settings["task_settings"]["random_start_probability"] == 0.5
+    assert settings["task_settings"]["push_mm_per_s"] == 10.0
     assisted = train.server_args(train.Settings(push_pull=True, recovery=3, recovery_assist=True))
     assert "--recovery-assist" in assisted and "--recovery-assist" not in train.server_args(train.Settings())
 

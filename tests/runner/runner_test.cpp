@@ -445,7 +445,7 @@ TEST_CASE("evaluation table: the paper's rows and a Markdown table that says why
   CHECK(e["rows"][1]["skipped"].get<std::string>().find("no_such_anatomy") != std::string::npos);
   CHECK(e["settings"]["intermediate_target_mm"] == gw::TaskConfig{}.intermediate_target_mm);
   gw::EvaluationOptions bad = o;
-  bad.intermediate_target_mm = -1;  // the task refuses it; the row says so instead of the run dying
+  bad.task.intermediate_target_mm = -1;  // the task refuses it; the row says so instead of the run dying
   const nlohmann::json refused = gw::run_evaluation({row}, bad);
   CHECK(refused["rows"][0]["skipped"].get<std::string>().find("intermediate_target_mm") != std::string::npos);
   const std::string md = gw::evaluation_to_markdown(e);

@@ -39,6 +39,20 @@ VALIDATION = [
     ("anatomies/validation/pl_validation/pl_validation.stl", [2, 3, 4]),
     ("anatomies/validation/syn_validation/syn_validation.stl", [1, 2, 3, 4]),
 ]
+def legacy_observation(settings: dict) -> dict:
+    """The task JSON of a run's settings.json written before --task: its observation flags (omega_plane,
+    omega_side, junctions, push_pull, since_progress) as the task's observation object."""
+    observation = {"omega_plane": settings.get("omega_plane", "approach"),
+                   "omega_side": bool(settings.get("omega_side", False)),
+                   "junctions": settings.get("junctions", "separate"),
+                   "push_pull": bool(settings.get("push_pull", False)),
+                   "since_progress": bool(settings.get("since_progress", False))}
+    task = {"observation": observation}
+    if observation["push_pull"]:
+        task["action"] = "guidewire-nav/act/2"
+    return task
+
+
 def run_layout(settings: dict) -> str:
     """The observation layout a run's settings.json trained on: what a server started with the run's task
     settings says in its spec (the C++ ObservationLayout; no copy of the layouts here)."""
@@ -46,8 +60,10 @@ def run_layout(settings: dict) -> str:
     from guidewire_nav.train import Settings, server_args
 
     known = {f.name for f in dataclasses.fields(Settings)}
-    env = GuidewireEnv(anatomies="t1_straight_y", server_args=server_args(
-        Settings(**{k: v for k, v in settings.items() if k in known})))
+    run = Settings(**{k: v for k, v in settings.items() if k in known})
+    if "task" not in settings:  # a run before the task JSON (2026-12-04): its flags chose the observation
+        run.task = json.dumps(legacy_observation(settings))
+    env = GuidewireEnv(anatomies="t1_straight_y", server_args=server_args(run))
     try:
         return env.spec_reply["obs_layout"]
     finally:

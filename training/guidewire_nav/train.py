@@ -45,40 +45,10 @@ def arg(default, help: str):
 class Settings:
     out: str = arg("runs/sac", "run folder: logs, checkpoints, actor.json, curve PNG")
     anatomies: str = arg("train", "anatomy set (or comma-separated names) the servers load")
-    omega_plane: str = arg("approach", "omega's plane: approach (obs/2) or correct_branch (paper, obs/1)")
-    omega_side: bool = arg(False, "also observe omega's sine (obs/3, approach plane only): which way the rotation "
-                                  "carries the bend towards -1 (engine/task/observation.hpp says why)")
-    junctions: str = arg("separate", "how a junction's wrong branches enter omega: separate (the paper's), combined "
-                                     "(k-way junctions and close forks; with --omega-side: obs/4) or kway (k-way "
-                                     "junctions only; obs/6); docs/junctions.md")
-    push_pull: bool = arg(False, "the actor also sets the insertion speed (action [rotation, insertion], act/2; "
-                                 "observation obs/5; reward: engine/task/reward.hpp push_pull_reward; "
-                                 "docs/recovery.md)")
-    since_progress: bool = arg(False, "with --push-pull: observation obs/7, obs/5 and the time since the tip last "
-                                      "progressed (engine/task/observation.hpp says why)")
-    recovery: int = arg(0, "episodes go on after the strict end, at most this many retries (with --push-pull "
-                           "the actor pulls back itself; docs/recovery.md)")
-    recovery_assist: bool = arg(False, "with --recovery and --push-pull: the wrapper pulls the wire back on a stall "
-                                       "or after stuck_steps env steps in a wrong child (docs/recovery.md)")
-    reward_wrong_branch: float = arg(1.0, "--push-pull: reward lost per env step while the tip is in a wrong "
-                                          "child")
-    reward_time: float = arg(0.0, "--push-pull: reward lost every env step, a cost of time (0: stopping is free; "
-                                  "engine/task/reward.hpp)")
-    reward_force: float = arg(0.0, "reward lost per newton of the env step's peak total wall force (0: the "
-                                   "paper's reward; docs/recovery.md)")
-    force_limit: float = arg(0.0, "withhold the forward push while the wire presses the wall harder than this many "
-                                  "newtons at one node (0: off, the paper's task; docs/recovery.md)")
-    reward_aim: str = arg("depth", "--push-pull: the orientation term times the step's new depth (depth) or its "
-                                   "change over the step (change; engine/task/reward.hpp says why)")
-    reward_omega_centre: float = arg(0.1, "centre of the reward sigmoid 2/(1+exp(slope(omega-centre)))-1; paper "
-                                          "Eq. 3: 0.1 (engine/task/reward.hpp says why to change)")
-    reward_omega_slope: float = arg(5.0, "slope of the reward sigmoid; paper Eq. 3: 5")
-    push_speed: float = arg(10.0, "constant insertion speed, mm/s (the paper does not state it; 10 = 0.4 mm per "
-                                  "40 ms env step)")
-    roll_disturbance: float = arg(0.0, "per-episode probability of an unannounced 45-180 deg proximal roll "
-                                       "(robustness; 0 = the paper's task, task_config.hpp says why)")
-    random_start: float = arg(0.0, "per-episode probability of starting part-way to the bifurcation (trees hand "
-                                   "control over near one; task_config.hpp says why)")
+    task: str = arg("", "task settings: a JSON file, or an inline JSON object, of TaskConfig fields "
+                        "(docs/task_settings.md), sent as it is to every server (guidewire-server --task); '' = the "
+                        "shipped rotation actor's task (obs/3, act/1). The paper's: training/tasks/paper.json; the "
+                        "push/pull actor's: training/tasks/push_pull.json")
     init_model: str = arg("", "fine-tune: start from this SB3 SAC zip (e.g. a checkpoint)")
     init_actor: str = arg("", "fine-tune: start the actor from an exported actor JSON (fresh critics); with "
                               "--push-pull a rotation actor (obs/3, act/1) starts the rotation output, the "
@@ -162,17 +132,27 @@ def git_commit() -> str:
         return "unknown"
 
 
+def task_settings(s: Settings) -> dict:
+    """The task JSON of --task (a file or an inline object); {} = the servers' defaults. Read once here so that
+    every server, the run's settings.json and its resume check see the same object."""
+    text = s.task.strip()
+    if not text:
+        return {}
+    try:
+        task = json.loads(text) if text.startswith("{") else json.loads(Path(text).read_text())
+    except FileNotFoundError:
+        raise SystemExit(f"--task: {text}: no such file (give a task JSON file or an inline JSON object)")
+    except json.JSONDecodeError as e:
+        raise SystemExit(f"--task: {text}: not JSON ({e})")
+    if not isinstance(task, dict):
+        raise SystemExit(f"--task: {text}: a task is a JSON object of TaskConfig fields (docs/task_settings.md)")
+    return task
+
+
 def server_args(s: Settings) -> list[str]:
-    return ["--omega-plane", s.omega_plane, "--reward-omega-centre", repr(s.reward_omega_centre),
-            "--reward-omega-slope", repr(s.reward_omega_slope), "--push-speed", repr(s.push_speed),
-            "--roll-disturbance", repr(s.roll_disturbance), "--random-start", repr(s.random_start),
-            "--junctions", s.junctions] + (["--omega-side"] if s.omega_side else []) + (
-        ["--recovery", str(s.recovery)] if s.recovery else []) + (
-        ["--recovery-assist"] if s.recovery_assist else []) + (
-        ["--push-pull", "--reward-wrong-branch", repr(s.reward_wrong_branch), "--reward-time", repr(s.reward_time),
-         "--reward-aim", s.reward_aim] if s.push_pull else []) + (["--since-progress"] if s.since_progress else []) + (
-        ["--reward-force", repr(s.reward_force)] if s.reward_force else []) + (
-        ["--force-limit", repr(s.force_limit)] if s.force_limit else [])
+    """The servers' command line: the task JSON as it is (the server checks it and names a bad key)."""
+    task = task_settings(s)
+    return ["--task", json.dumps(task, separators=(",", ":"))] if task else []
 
 
 def make_env_fn(s: Settings, rank: int, eval_env: bool = False, ray_server=None, seed_offset: int = 0):
@@ -470,6 +450,9 @@ def main(argv=None) -> int:
     monitor = out / (f"monitor_from_{resumed_at}" if resume_from else "monitor")  # a resumed part: its own file
     vec_env = VecMonitor(vec_env, str(monitor), info_keywords=("success",))
     eval_env = make_env_fn(s, 0, eval_env=True, ray_server=ray_servers.get("server-eval"))()
+    # the whole task the servers run (their spec: every TaskConfig field), beside the --task that chose it
+    record.setdefault("task_settings", eval_env.unwrapped.spec_reply["task"])
+    (out / "settings.json").write_text(json.dumps(record, indent=2))
 
     # --- SAC with the paper's settings; the actor may get its own learning rate (SACWithActorRate)
     sac_settings = dict(
@@ -491,8 +474,10 @@ def main(argv=None) -> int:
         from guidewire_nav.export_actor import load_actor_json, widen_to_push_pull
 
         start_actor = json.loads(Path(s.init_actor).read_text())
-        if s.push_pull and start_actor.get("action_size") == 1:  # a rotation actor starts the push/pull one
-            start_actor = widen_to_push_pull(start_actor, since_progress=s.since_progress)
+        spec = eval_env.unwrapped.spec_reply  # the task's layouts, as the server says them
+        if spec.get("action_layout") == "guidewire-nav/act/2" and start_actor.get("action_size") == 1:
+            # a rotation actor starts the push/pull one
+            start_actor = widen_to_push_pull(start_actor, since_progress=spec["obs_layout"] == "guidewire-nav/obs/7")
         load_actor_json(model, start_actor, log_std=s.init_log_std)
     model.set_logger(configure(str(out / "logs"), ["csv", "tensorboard"]))
 
@@ -528,6 +513,7 @@ def main(argv=None) -> int:
     action_layout = eval_env.unwrapped.spec_reply.get("action_layout", "guidewire-nav/act/1")
     summary = {
         "command": command, "commit": commit, "settings": dataclasses.asdict(s),
+        "task_settings": eval_env.unwrapped.spec_reply["task"],
         "steps": int(model.num_timesteps), "wall_time_s": round(wall, 1),
         "resumed_at_steps": [r["at_step"] for r in record.get("resumed", [])],
         "device": str(model.device), "machine": platform.processor() or platform.machine(),

@@ -134,48 +134,6 @@ void observe(const NavigationTask& task, EpisodeState& s, bool first) {
   s.in_control = course.policy_always || near_a_bifurcation(course, tip);
 }
 
-// Drawn after every other reset draw, and only when enabled, so episodes without it are unchanged.
-void draw_roll_disturbance(const TaskConfig& c, double advance_mm, SplitMix64& rng, EpisodeState& s) {
-  if (c.roll_disturbance_probability <= 0 || rng.uniform() >= c.roll_disturbance_probability) return;
-  const double angle = c.roll_disturbance_min_rad + (c.roll_disturbance_max_rad - c.roll_disturbance_min_rad) * rng.uniform();
-  const double steps_to_end = s.course->line.length / advance_mm;
-  s.disturbance_from_step = static_cast<int>(0.5 * steps_to_end * rng.uniform());
-  s.disturbance_steps = std::max(1, static_cast<int>(std::lround(angle / (c.max_rotation_rad_per_s * env_dt(c)))));
-  s.disturbance_sign = rng.uniform() < 0.5 ? -1.0 : 1.0;
-}
-
-double disturbance_rate(const TaskConfig& c, const EpisodeState& s) {
-  const bool on = s.steps >= s.disturbance_from_step && s.steps < s.disturbance_from_step + s.disturbance_steps;
-  return on ? s.disturbance_sign * c.max_rotation_rad_per_s : 0.0;
-}
-
-// TaskConfig::random_start_probability: drawn after every other reset draw, and only when enabled,
-// so episodes without it are unchanged. Pushes without rotation (as the push-only stretch between two
-// control zones does) until the tip is at the drawn arc, then observes afresh so lambda_0 starts there.
-void draw_random_start(const NavigationTask& task, SplitMix64& rng, EpisodeState& s) {
-  const TaskConfig& c = task.config;
-  if (c.random_start_probability <= 0 || rng.uniform() >= c.random_start_probability) return;
-  const Course& course = current_course(s);
-  const double first_centre = course.bifurcations.empty() ? course.line.length : course.bifurcations.front().arc;
-  const double from = s.progress_mm;
-  const double to = from + (first_centre - c.random_start_margin_mm - from) * rng.uniform();
-  if (to <= from) return;
-  const VesselScene* scene = task.anatomies[static_cast<size_t>(s.anatomy)].scene.get();
-  const Control push{c.push_mm_per_s, 0.0};
-  // A wire that buckles instead of advancing stops the pre-push (3x the steps a free wire needs).
-  const int max_steps = static_cast<int>(std::ceil(3.0 * (to - from) / (env_dt(c) * c.push_mm_per_s))) + 10;
-  for (int k = 0; k < max_steps && s.progress_mm < to; ++k) {
-    for (int f = 0; f < c.frame_skip; ++f) {
-      const StepReport report = step(task.wire, scene, push, s.wire);
-      if (!report.ok)
-        throw std::runtime_error("random start: physics diverged while pushing the wire to its start: " +
-                                 report.problem);
-    }
-    observe(task, s, true);
-  }
-  s.pre_pushed_mm = s.progress_mm - from;
-}
-
 }  // namespace
 
 EpisodeState reset_episode(const NavigationTask& task, int anatomy, int target_id, std::uint64_t seed) {
@@ -213,13 +171,10 @@ EpisodeState reset_episode(const NavigationTask& task, int anatomy, int target_i
   const double advance = env_dt(c) * c.push_mm_per_s;
   s.max_steps = c.max_steps > 0 ? c.max_steps
                                 : static_cast<int>(std::ceil(c.max_steps_path_factor * s.course->line.length / advance)) + 50;
-  draw_roll_disturbance(c, advance, rng, s);
   observe(task, s, true);
-  draw_random_start(task, rng, s);
   s.obs[obs_index::kAction] = 0.0;
   s.obs[obs_index::kInsertion] = 1.0;
   s.obs[obs_index::kWrongBranch] = 0.0;
-  s.obs[obs_index::kSinceProgress] = 0.0;
   s.best_progress_mm = s.progress_mm;
   s.inserted_at_best_mm = s.wire.inserted_length_mm;
   s.procedure_max_steps =
@@ -242,11 +197,6 @@ StepInfo episode_info(const NavigationTask& task, const EpisodeState& s) {
 }
 
 namespace {
-
-// The observation's since_progress entry: env steps since the tip last progressed over stuck_steps, at most 1.
-double since_progress(const TaskConfig& c, const EpisodeState& s) {
-  return std::min(1.0, static_cast<double>(s.steps - s.best_progress_step) / c.stuck_steps);
-}
 
 // Recovery: env steps that pull-back `attempt` (1-based) turns for: attempt * recovery_turn_rad at the
 // full rotation rate (at least one step).
@@ -313,9 +263,8 @@ void end_push_pull_step(const NavigationTask& task, EpisodeState& s, int lost, d
   s.pushed_steps += insertion;
   const double new_depth = std::clamp(s.pushed_steps - s.deepest_pushed_steps, 0.0, 1.0);
   s.deepest_pushed_steps = std::max(s.deepest_pushed_steps, s.pushed_steps);
-  out.reward = push_pull_reward(s.obs[obs_index::kOmega], s.obs[obs_index::kLambda], rotation, new_depth,
-                                in_wrong_branch, c.reward_wrong_branch, c.reward_time_per_step, c.reward, c.reward_aim,
-                                omega_before);
+  out.reward = push_pull_reward(s.obs[obs_index::kOmega], omega_before, s.obs[obs_index::kLambda], rotation, new_depth,
+                                in_wrong_branch, c.reward_wrong_branch, c.reward_time_per_step, c.reward);
 
   // A stall is wire pushed in without progress: stuck_steps pushes at the full speed (the strict rule's 24 mm
   // under the constant push) since the tip last gained stuck_progress_mm. An actor that stops to aim does not
@@ -390,12 +339,12 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, const Acti
   const Anatomy& anatomy = task.anatomies[static_cast<size_t>(s.anatomy)];
   const bool retracting = s.retracting;
   const bool push_pull = c.action == ActionLayout::kRotationInsertion;
-  const double omega_before = s.obs[obs_index::kOmega];  // act/2's reward with RewardAim::kByChange
+  const double omega_before = s.obs[obs_index::kOmega];  // act/2's reward pays the aim by its change
   const double applied = s.in_control && !retracting ? std::clamp(action.rotation, -1.0, 1.0) : 0.0;
   // act/2 in control: the actor's insertion, not pulling the wire out past its start insertion.
   double insertion = push_pull && s.in_control ? std::clamp(action.insertion, -1.0, 1.0) : 1.0;
   if (insertion < 0 && s.wire.inserted_length_mm <= c.initial_insertion_mm) insertion = 0.0;
-  Control control{insertion * c.push_mm_per_s, applied * c.max_rotation_rad_per_s + disturbance_rate(c, s)};
+  Control control{insertion * c.push_mm_per_s, applied * c.max_rotation_rad_per_s};
   if (retracting) {
     control.push_mm_per_s = -c.recovery_pull_mm_per_s;
     if (s.turn_steps_left > 0) {  // pull-back k turns by k * recovery_turn_rad at the full rotation rate
@@ -495,7 +444,6 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, const Acti
       end_retraction(task, s);
     else
       s.in_control = false;
-    s.obs[obs_index::kSinceProgress] = since_progress(c, s);
     out.obs = s.obs;
     out.info = episode_info(task, s);
     fill_force(out.info);
@@ -511,7 +459,6 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, const Acti
     s.best_progress_step = s.steps;
     s.inserted_at_best_mm = s.wire.inserted_length_mm + s.withheld_mm;
   }
-  s.obs[obs_index::kSinceProgress] = out.obs[obs_index::kSinceProgress] = since_progress(c, s);
   out.info = episode_info(task, s);
   fill_force(out.info);
   out.info.success = out.info.tip_to_target_mm <= c.success_radius_mm;

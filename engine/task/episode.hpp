@@ -34,12 +34,6 @@ struct EpisodeState {
   int best_progress_step = 0;
   Eigen::Vector3d tip = Eigen::Vector3d::Zero();
   bool in_control = true;          // whether the next action is applied
-  // Roll disturbance (TaskConfig::roll_disturbance_probability): env steps [from, from + steps) twist
-  // the wire at the full rate in direction `sign`, on top of the action. steps = 0: none this episode.
-  int disturbance_from_step = 0;
-  int disturbance_steps = 0;
-  double disturbance_sign = 0.0;
-  double pre_pushed_mm = 0.0;      // how far reset pushed the tip along the course (random start; else 0)
   int steps = 0;
   int max_steps = 0;
   bool done = false;

@@ -1,9 +1,8 @@
 #pragma once
 // The observation of paper 2.2.3, Omega = {theta_t, theta_{t-n dt}, lambda_t, lambda_{t-n dt}, a_t, omega, s},
-// as a fixed-size vector. Layouts "guidewire-nav/obs/1" (the paper's omega) and "guidewire-nav/obs/2"
-// (omega in the approach plane) are the first 11 entries; "guidewire-nav/obs/3" is obs/2 plus a twelfth,
-// omega's sine; "guidewire-nav/obs/4" is obs/3 with junctions combined (k-way junctions and closely spaced
-// forks, docs/junctions.md). The layout is TaskConfig::observation (observation_layout.hpp):
+// as a fixed-size vector. Layout "guidewire-nav/obs/1" (the paper's omega) is the first 11 entries;
+// "guidewire-nav/obs/3" is the first 12, omega in the approach plane and its sine; "guidewire-nav/obs/4" and
+// "/obs/6" are obs/3 with junctions combined or read as k-way (docs/junctions.md); "/obs/5" all 14. The layout is TaskConfig::observation (observation_layout.hpp):
 //   [0..2]  theta_t      t_i . c_i, i = 1..3: unit wire tangent at 0, 2, 4 mm from the tip (t_i) against
 //                        the unit centerline tangent h = 4 mm ahead of that point's projection (c_i)
 //   [3..5]  theta_{t-n dt}  the same one env step earlier (n dt = frame_skip * dt)
@@ -13,7 +12,7 @@
 //   [8]     a_t          the rotation action applied during the last env step, in [-1, 1] (0 when the
 //                        policy was not in control)
 //   [9]     omega = k_p . w_p in [-1, 1]: tip curvature vector and wrong-branch direction, both projected on
-//                        the plane normal to the correct branch (obs/1); in obs/2 the curvature and the
+//                        the plane normal to the correct branch (obs/1); in obs/3 the curvature and the
 //                        direction from the correct to the wrong branch (w - c), projected on the plane normal
 //                        to the approach direction p (course.hpp). w_p is unit, k_p is divided by
 //                        max(|k_p|, kappa_rest/2) so omega is the cosine of the angle between them while the
@@ -35,12 +34,6 @@
 //                        wrong_branch_entered.hpp), else 0 (obs/5 only). Why: an actor that may pull back must
 //                        know it went the wrong way, as a clinician sees it on the fluoroscope; the paper's
 //                        entries barely change once the tip is in a wrong child
-//   [14]    since_progress  env steps since the tip last gained stuck_progress_mm along its course (the stall
-//                        test's clock, EpisodeState::best_progress_step) over stuck_steps, clipped to 1 (obs/7
-//                        only). Why: every other entry stands still when the wire does, so a deterministic actor
-//                        that outputs (0, 0) once sees the same observation and outputs (0, 0) again until the
-//                        procedure's limit (the obs/5 actor's standstill, results/push_pull); this one keeps
-//                        changing while nothing moves, and says how long the wire has made no headway
 // Why 3 products t_i . c_i and not the figure's 3x3 t_i . c_j: the text defines theta_i = t_i . c_i
 // explicitly and calls theta an N-vector; the 6 off-diagonal products add mostly c_i . c_j-like terms,
 // i.e. the local curvature of the centerline itself, which is the anatomy-specific information the
@@ -59,7 +52,7 @@ using Observation = std::array<double, kObservationSize>;
 
 namespace obs_index {
 inline constexpr int kTheta = 0, kThetaPrev = 3, kLambda = 6, kLambdaPrev = 7, kAction = 8, kOmega = 9, kSpeed = 10,
-                     kOmegaSide = 11, kInsertion = 12, kWrongBranch = 13, kSinceProgress = 14;
+                     kOmegaSide = 11, kInsertion = 12, kWrongBranch = 13;
 }
 
 // Names of the entries, e.g. "theta_t_1", "lambda_prev", "omega".

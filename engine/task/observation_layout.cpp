@@ -15,48 +15,41 @@ struct Layout {
   bool omega_side;
   JunctionModel junctions;
   bool push_pull;
-  bool since_progress;
 };
 // obs/6 is obs/3 with k-way junctions read together (close forks apart): the same entries again.
-// obs/5 is obs/3 with the push/pull actor's two entries (act/2) after omega_side; obs/7 is obs/5 with the time
-// since the tip last progressed after them.
+// obs/5 is obs/3 with the push/pull actor's two entries (act/2) after omega_side.
 constexpr Layout kLayouts[] = {
-    {"guidewire-nav/obs/1", OmegaPlane::kCorrectBranch, false, JunctionModel::kSeparate, false, false},
-    {"guidewire-nav/obs/2", OmegaPlane::kApproach, false, JunctionModel::kSeparate, false, false},
-    {"guidewire-nav/obs/3", OmegaPlane::kApproach, true, JunctionModel::kSeparate, false, false},
-    {"guidewire-nav/obs/4", OmegaPlane::kApproach, true, JunctionModel::kCombined, false, false},
-    {"guidewire-nav/obs/5", OmegaPlane::kApproach, true, JunctionModel::kSeparate, true, false},
-    {"guidewire-nav/obs/6", OmegaPlane::kApproach, true, JunctionModel::kKWay, false, false},
-    {"guidewire-nav/obs/7", OmegaPlane::kApproach, true, JunctionModel::kSeparate, true, true}};
+    {"guidewire-nav/obs/1", OmegaPlane::kCorrectBranch, false, JunctionModel::kSeparate, false},
+    {"guidewire-nav/obs/3", OmegaPlane::kApproach, true, JunctionModel::kSeparate, false},
+    {"guidewire-nav/obs/4", OmegaPlane::kApproach, true, JunctionModel::kCombined, false},
+    {"guidewire-nav/obs/5", OmegaPlane::kApproach, true, JunctionModel::kSeparate, true},
+    {"guidewire-nav/obs/6", OmegaPlane::kApproach, true, JunctionModel::kKWay, false}};
 }  // namespace
 
 const char* ObservationLayout::name() const {
   for (const Layout& l : kLayouts)
-    if (l.plane == omega_plane && l.omega_side == omega_side && l.junctions == junctions && l.push_pull == push_pull &&
-        l.since_progress == since_progress)
+    if (l.plane == omega_plane && l.omega_side == omega_side && l.junctions == junctions && l.push_pull == push_pull)
       return l.name;
-  if (since_progress && !push_pull)
-    throw std::invalid_argument("the time since the tip last progressed needs the push/pull entries (layout obs/7 is obs/5 with it)");
   if (push_pull)
     throw std::invalid_argument("the push/pull entries need omega's plane 'approach', omega_side and separate junctions (layout obs/5)");
   if (omega_side && omega_plane != OmegaPlane::kApproach)
     throw std::invalid_argument("omega_side needs omega's plane 'approach' (no layout has it in the paper's plane)");
+  if (!omega_side && omega_plane == OmegaPlane::kApproach && junctions == JunctionModel::kSeparate)
+    throw std::invalid_argument("omega in the approach plane needs omega_side (layout obs/3); obs/2, without it, is "
+                                "retired (docs/policy_history.md)");
   if (junctions == JunctionModel::kKWay)
     throw std::invalid_argument("k-way junctions need omega's plane 'approach' and omega_side (layout obs/6)");
   throw std::invalid_argument("combined junctions need omega's plane 'approach' and omega_side (layout obs/4)");
 }
 
 int ObservationLayout::size() const {
-  return since_progress ? kObservationSize
-         : push_pull    ? kPushPullObservationSize
-         : omega_side   ? kSideObservationSize
-                        : kPaperObservationSize;
+  return push_pull ? kPushPullObservationSize : omega_side ? kSideObservationSize : kPaperObservationSize;
 }
 
 ObservationLayout ObservationLayout::parse(const std::string& name) {
   std::string known;
   for (const Layout& l : kLayouts) {
-    if (name == l.name) return {l.plane, l.omega_side, l.junctions, l.push_pull, l.since_progress};
+    if (name == l.name) return {l.plane, l.omega_side, l.junctions, l.push_pull};
     known += std::string(known.empty() ? "" : ", ") + l.name;
   }
   throw std::invalid_argument("observation layout '" + name + "' is not one of " + known);

@@ -4,21 +4,22 @@
 // was trained on has a name, recorded in the exported actor's JSON (`obs_layout`) and in the server's
 // `spec`; the task (TaskConfig::observation), the server and the Eigen runtime all read it from here:
 //   guidewire-nav/obs/1  omega in the correct branch's normal plane (the paper's definition), 11 entries
-//   guidewire-nav/obs/2  omega in the approach plane, 11 entries (TaskConfig's default)
-//   guidewire-nav/obs/3  obs/2 + omega_side, 12 entries (the shipped actor)
+//   guidewire-nav/obs/3  omega in the approach plane and its sine (omega_side), 12 entries (the shipped actor;
+//                        TaskConfig's default)
 //   guidewire-nav/obs/4  obs/3 with junctions combined (docs/junctions.md), 12 entries
 //   guidewire-nav/obs/5  obs/3 + the last insertion action and a wrong-branch flag, 14 entries: the push/pull
 //                        actor's (action layout act/2, action_layout.hpp; docs/recovery.md)
 //   guidewire-nav/obs/6  obs/3 with k-way junctions (docs/junctions.md), 12 entries
-//   guidewire-nav/obs/7  obs/5 + the time since the tip last progressed, 15 entries (act/2; docs/recovery.md)
+// Retired (no shipped actor used them; docs/policy_history.md "Retired settings"): obs/2 (obs/3 without omega_side)
+// and obs/7 (obs/5 and the time since the tip last progressed).
 #include <string>
 
 namespace gw {
 
 inline constexpr int kThetaCount = 3;
 // Every entry is computed on every step; a layout hands its first size() entries to the actor.
-inline constexpr int kObservationSize = 2 * kThetaCount + 9;
-inline constexpr int kPaperObservationSize = 2 * kThetaCount + 5;  // obs/1, obs/2: without omega_side
+inline constexpr int kObservationSize = 2 * kThetaCount + 8;
+inline constexpr int kPaperObservationSize = 2 * kThetaCount + 5;  // obs/1: without omega_side
 inline constexpr int kSideObservationSize = kPaperObservationSize + 1;  // obs/3, obs/4, obs/6: with omega_side
 inline constexpr int kPushPullObservationSize = kSideObservationSize + 2;  // obs/5: with the push/pull entries
 
@@ -51,19 +52,17 @@ enum class JunctionModel {
 
 struct ObservationLayout {
   OmegaPlane omega_plane = OmegaPlane::kApproach;  // kCorrectBranch = the paper's definition (obs/1)
-  bool omega_side = false;                         // obs/3, obs/4: omega's sine as a twelfth entry
+  bool omega_side = true;                          // obs/3 (the default), obs/4, obs/5, obs/6: omega's sine as a
+                                                   // twelfth entry (false: obs/1, the paper's plane)
   JunctionModel junctions = JunctionModel::kSeparate;  // kCombined: obs/4, kKWay: obs/6
   bool push_pull = false;                          // obs/5: the insertion action and the wrong-branch flag
                                                    // as entries 13 and 14 (the act/2 actor's)
-  bool since_progress = false;                     // obs/7: obs/5 and the time since the tip last progressed
-                                                   // as entry 15
 
   // The layout's name; throws std::invalid_argument for a combination no layout has (omega_side in the
-  // paper's plane; combined junctions without omega_side; push/pull entries without obs/3; since_progress
-  // without obs/5), naming why.
+  // paper's plane; the approach plane without omega_side; combined junctions without omega_side; push/pull
+  // entries without obs/3), naming why.
   const char* name() const;
-  // How many leading observation entries the actor takes: 11, 12 with omega_side, 14 with push_pull, 15 with
-  // since_progress.
+  // How many leading observation entries the actor takes: 11, 12 with omega_side, 14 with push_pull.
   int size() const;
   // The layout called `name`; throws std::invalid_argument naming the known layouts.
   static ObservationLayout parse(const std::string& name);

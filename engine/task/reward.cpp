@@ -22,23 +22,12 @@ double navigation_reward(double omega, double lambda_ratio, double action, const
   return orientation + progress + effort;
 }
 
-double push_pull_reward(double omega, double lambda_ratio, double rotation, double new_depth, bool in_wrong_branch,
-                        double wrong_branch_cost, double time_cost, const RewardShape& shape, RewardAim aim,
-                        double omega_before) {
+double push_pull_reward(double omega, double omega_before, double lambda_ratio, double rotation, double new_depth,
+                        bool in_wrong_branch, double wrong_branch_cost, double time_cost, const RewardShape& shape) {
   const double forward = std::clamp(new_depth, 0.0, 1.0);
-  const double aim_paid = aim == RewardAim::kByChange
-                              ? orientation_term(omega, shape) - orientation_term(omega_before, shape) +
-                                    forward * progress_term(lambda_ratio)
-                              : forward * (orientation_term(omega, shape) + progress_term(lambda_ratio));
+  const double aim_paid =
+      orientation_term(omega, shape) - orientation_term(omega_before, shape) + forward * progress_term(lambda_ratio);
   return aim_paid + effort_term(rotation) - (in_wrong_branch ? wrong_branch_cost : 0.0) - time_cost;
 }
-
-RewardAim parse_reward_aim(const std::string& text) {
-  if (text == "depth") return RewardAim::kByDepth;
-  if (text == "change") return RewardAim::kByChange;
-  throw std::invalid_argument("reward aim '" + text + "' is not one of depth, change");
-}
-
-const char* reward_aim_name(RewardAim aim) { return aim == RewardAim::kByChange ? "change" : "depth"; }
 
 }  // namespace gw

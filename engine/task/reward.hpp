@@ -17,37 +17,26 @@ struct RewardShape {
 // `lambda_ratio` is lambda_t / lambda_0, `action` the applied rotation action in [-1, 1].
 double navigation_reward(double omega, double lambda_ratio, double action, const RewardShape& shape = {});
 
-// The push/pull actor's reward (action layout act/2): the paper's orientation and progress terms earned in
-// proportion to `new_depth` in [0, 1], the part of a full-speed step by which the wire went deeper than ever
-// before in the episode; the rotation effort as in Eq. 3; less `wrong_branch_cost` while the tip is in a wrong
+// The push/pull actor's reward (action layout act/2): the paper's progress term earned in proportion to
+// `new_depth` in [0, 1], the part of a full-speed step by which the wire went deeper than ever before in the
+// episode; the orientation term's change (below); the rotation effort as in Eq. 3; less `wrong_branch_cost` while the tip is in a wrong
 // child; less `time_cost` every step. Why: with the speed in the actor's hands, Eq. 3's positive terms pay
 // for every step, so holding still while aimed would pay forever; weighted by the forward insertion, pushing
 // and pulling back in turn would (a first run learnt exactly that: docs/policy_history.md). Weighted by new
-// depth, stopping and going back and forth earn nothing, and the constant push earns Eq. 3: at new depth 1
-// outside a wrong child and without a time cost it is Eq. 3. But then stopping is free, and an actor that may
+// depth, stopping and going back and forth earn nothing. But then stopping is free, and an actor that may
 // enter a wrong child drifts to stopping (the 50k checkpoint of the first push/pull run did: results/push_pull);
 // a time cost makes every step spent short of the target cost something (TaskConfig::reward_time_per_step).
 //
-// How the act/2 reward pays for the aim (TaskConfig::reward_aim):
-//   kByDepth   the orientation term times new depth, as above (every push/pull run before the one shipped on
-//              2026-12-03 afternoon)
-//   kByChange  the orientation term's change over the step, O(omega) - O(omega_before), paid whatever the wire
-//              does; only the progress term is weighted by new depth. Why: weighted by new depth, the orientation
-//              term makes every push while omega is above the sigmoid's centre cost up to 1, where stopping costs
-//              only the time: an actor learns to stop, or to pull back, wherever pushing on turns omega the wrong
-//              way before it gets better (an S-curve before a fork), and training pulled the widened rotation
-//              actor's training episodes from 96% success to 40-78% (results/push_pull). A change telescopes: over
-//              an episode it sums to O(last) - O(first) whatever the path (potential-based shaping, Ng, Harada and
-//              Russell 1999), so it pays neither for holding an aim nor for going back and forth, and it costs
-//              a push only by the aim it loses, which turning back gains again.
-enum class RewardAim { kByDepth, kByChange };
-// "depth" | "change"; throws std::invalid_argument for anything else.
-RewardAim parse_reward_aim(const std::string& text);
-const char* reward_aim_name(RewardAim aim);
-
-// `omega_before` is the step's omega before it (read by kByChange only).
-double push_pull_reward(double omega, double lambda_ratio, double rotation, double new_depth, bool in_wrong_branch,
-                        double wrong_branch_cost, double time_cost, const RewardShape& shape = {},
-                        RewardAim aim = RewardAim::kByDepth, double omega_before = 0.0);
+// How the act/2 reward pays for the aim: by the orientation term's change over the step, O(omega) - O(omega_before),
+// paid whatever the wire does; only the progress term is weighted by new depth. Why: weighted by new depth (the
+// retired "depth" aim, docs/policy_history.md), the orientation term makes every push while omega is above the
+// sigmoid's centre cost up to 1, where stopping costs only the time: an actor learns to stop, or to pull back,
+// wherever pushing on turns omega the wrong way before it gets better (an S-curve before a fork), and training
+// pulled the widened rotation actor's training episodes from 96% success to 40-78% (results/push_pull). A change
+// telescopes: over an episode it sums to O(last) - O(first) whatever the path (potential-based shaping, Ng, Harada
+// and Russell 1999), so it pays neither for holding an aim nor for going back and forth, and it costs a push only by
+// the aim it loses, which turning back gains again.
+double push_pull_reward(double omega, double omega_before, double lambda_ratio, double rotation, double new_depth,
+                        bool in_wrong_branch, double wrong_branch_cost, double time_cost, const RewardShape& shape = {});
 
 }  // namespace gw

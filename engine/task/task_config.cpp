@@ -36,16 +36,6 @@ void check_task_config(const TaskConfig& c) {
   require(c.stuck_steps >= 1, "stuck_steps", ">= 1");
   require(c.stuck_progress_mm >= 0, "stuck_progress_mm", ">= 0");
   require(c.wire_reserve_mm >= 0, "wire_reserve_mm", ">= 0");
-  require(c.roll_disturbance_probability >= 0 && c.roll_disturbance_probability <= 1,
-          "roll_disturbance_probability", "in [0, 1]");
-  require(c.roll_disturbance_min_rad > 0 && c.roll_disturbance_min_rad <= c.roll_disturbance_max_rad,
-          "roll_disturbance_min_rad", "> 0 and <= roll_disturbance_max_rad");
-  require(c.roll_disturbance_max_rad <= 6.283185307179586, "roll_disturbance_max_rad", "<= 2 pi");
-  require(c.random_start_probability >= 0 && c.random_start_probability <= 1, "random_start_probability",
-          "in [0, 1]");
-  require(c.random_start_margin_mm >= 0, "random_start_margin_mm", ">= 0");
-  require(c.roll_disturbance_probability == 0 || c.max_rotation_rad_per_s > 0, "max_rotation_rad_per_s",
-          "> 0 when roll_disturbance_probability > 0");
   require(c.recovery_attempts >= 0, "recovery_attempts", ">= 0 (0 = the paper's strict task)");
   require(c.recovery_retract_mm > 0 && std::isfinite(c.recovery_retract_mm), "recovery_retract_mm", "> 0");
   require(c.recovery_pull_mm_per_s > 0 && std::isfinite(c.recovery_pull_mm_per_s), "recovery_pull_mm_per_s", "> 0");
@@ -58,7 +48,7 @@ void check_task_config(const TaskConfig& c) {
   require(c.reward_wrong_branch >= 0 && std::isfinite(c.reward_wrong_branch), "reward_wrong_branch", ">= 0");
   require(c.reward_time_per_step >= 0 && std::isfinite(c.reward_time_per_step), "reward_time_per_step", ">= 0");
   require((c.action == ActionLayout::kRotationInsertion) == c.observation.push_pull, "observation",
-          "obs/5 or obs/7 (with the insertion and wrong-branch entries) exactly when the action is act/2 (push/pull)");
+          "obs/5 (with the insertion and wrong-branch entries) exactly when the action is act/2 (push/pull)");
   require(c.reward_force_per_N >= 0 && std::isfinite(c.reward_force_per_N), "reward_force_per_N", ">= 0 (0 = off)");
   require(!c.recovery_assist || c.recovery_attempts > 0, "recovery_assist (--recovery-assist)",
           "used with recovery_attempts > 0 (--recovery K: the assist pulls back within those K attempts)");

@@ -52,9 +52,8 @@ struct TaskConfig {
   double lookahead_mm = 4.0;             // h: centerline tangent c_i taken h ahead of each sample
   double branch_direction_mm = 6.0;      // c and w (omega) = directions from a bifurcation centre to
                                          // the points this far along the correct / wrong child
-  ObservationLayout observation{OmegaPlane::kApproach, true};  // omega's plane, omega's sine, junctions
-                                         // (observation_layout.hpp); default obs/3, the shipped actor's (the paper's
-                                         // is obs/1: docs/task_settings.md)
+  ObservationLayout observation;         // omega's plane, omega's sine, junctions (observation_layout.hpp); default
+                                         // obs/3, the shipped actor's (the paper's is obs/1: docs/task_settings.md)
   double max_abs_speed_ratio = 5.0;      // s = v.c / push is clipped to +-this (bounded obs space)
   double max_lambda_ratio = 4.0;         // lambda_t / lambda_0 is clipped to [0, this]
   // --- Reward (reward.hpp) ---
@@ -83,24 +82,6 @@ struct TaskConfig {
   int stuck_steps = 60;                  // truncate when the tip's progress along the path has not grown
   double stuck_progress_mm = 1.0;        //   by stuck_progress_mm in stuck_steps env steps (24 mm pushed)
   double wire_reserve_mm = 5.0;          // truncate when less than this much wire is left outside
-  // --- Training robustness (0 = the paper's task) ---
-  // An unannounced proximal roll once per episode with this probability: the wire is twisted at the
-  // full rotation rate, on top of the action, by a random angle at a random moment of the first half
-  // of the course. Without it a policy only meets a badly oriented tip right after reset (lambda ~ 1):
-  // in trees control is handed over mid-course and the roll at the hand-over can be anything, and the
-  // policy shipped before this setting froze there (omega +0.5 at lambda 0.6: action ~0, wrong branch).
-  double roll_disturbance_probability = 0.0;
-  double roll_disturbance_min_rad = 0.7853981633974483;  // |angle| uniform in [pi/4, pi]: from a
-  double roll_disturbance_max_rad = 3.141592653589793;   // nudge to the worst (a half turn)
-  // A start part-way along the access vessel with this probability: at reset the wire is pushed,
-  // without rotation, until its tip is a random distance along the course (uniform between the
-  // inlet start and random_start_margin_mm before the first bifurcation centre), and lambda_0 is
-  // measured from there. In trees control is handed over 10-20 mm before the next bifurcation with
-  // lambda just reset to 1 and whatever roll the last bifurcation left; inlet starts show a policy
-  // lambda = 1 only 50-66 mm before its bifurcation (shipped policy, coronary T4 seed 21: handed
-  // the tip 13 mm before the centre at omega -0.8, it rolled to +0.5 and took the wrong branch).
-  double random_start_probability = 0.0;
-  double random_start_margin_mm = 8.0;
   // --- Recovery (issue 37 item 1a; docs/recovery.md). 0 attempts = the paper's strict task: every
   // episode bit for bit as before. With K > 0 the episode does not end where the strict one does (first
   // wrong branch, a stall): it reports that step as the strict end (StepInfo::strict_end) and goes on:
@@ -142,9 +123,6 @@ struct TaskConfig {
   // ... and less this every env step (a cost of time; 0.25 = the shipped push/pull actor's, 0 = the first push/pull
   // run's reward). Without it stopping is free (reward.hpp says why that matters).
   double reward_time_per_step = 0.25;
-  // ... and how it pays for the aim: its change over each step (kByChange, the shipped push/pull actor's, the
-  // default) or the orientation term times new depth (kByDepth, every push/pull run before it; reward.hpp says why).
-  RewardAim reward_aim = RewardAim::kByChange;
   // --- Force penalty (issue 37 item 4; 0 = the paper's reward, Eq. 3) ---
   // Each env step's reward loses this times the step's peak total wall force in newtons (StepInfo::
   // wall_force_peak_total_mN / 1000): a wire pressed on the wall at 1.5 N (the vessel-rupture threshold

@@ -38,11 +38,6 @@ constexpr DoubleField kDoubles[] = {
     {"max_steps_path_factor", &TaskConfig::max_steps_path_factor},
     {"stuck_progress_mm", &TaskConfig::stuck_progress_mm},
     {"wire_reserve_mm", &TaskConfig::wire_reserve_mm},
-    {"roll_disturbance_probability", &TaskConfig::roll_disturbance_probability},
-    {"roll_disturbance_min_rad", &TaskConfig::roll_disturbance_min_rad},
-    {"roll_disturbance_max_rad", &TaskConfig::roll_disturbance_max_rad},
-    {"random_start_probability", &TaskConfig::random_start_probability},
-    {"random_start_margin_mm", &TaskConfig::random_start_margin_mm},
     {"recovery_retract_mm", &TaskConfig::recovery_retract_mm},
     {"recovery_pull_mm_per_s", &TaskConfig::recovery_pull_mm_per_s},
     {"recovery_turn_rad", &TaskConfig::recovery_turn_rad},
@@ -102,8 +97,7 @@ json observation_json(const ObservationLayout& o) {
   return {{"omega_plane", omega_plane_name(o.omega_plane)},
           {"omega_side", o.omega_side},
           {"junctions", junction_model_name(o.junctions)},
-          {"push_pull", o.push_pull},
-          {"since_progress", o.since_progress}};
+          {"push_pull", o.push_pull}};
 }
 
 ObservationLayout observation_from_json(const json& v, ObservationLayout o) {
@@ -115,9 +109,8 @@ ObservationLayout observation_from_json(const json& v, ObservationLayout o) {
     else if (key == "omega_side") o.omega_side = flag(value, name);
     else if (key == "junctions") o.junctions = named(name, [&] { return parse_junction_model(text(value, name)); });
     else if (key == "push_pull") o.push_pull = flag(value, name);
-    else if (key == "since_progress") o.since_progress = flag(value, name);
-    else refuse(name, "is not a task setting (observation has omega_plane, omega_side, junctions, push_pull, "
-                      "since_progress; docs/task_settings.md)");
+    else refuse(name, "is not a task setting (observation has omega_plane, omega_side, junctions, push_pull; "
+                      "docs/task_settings.md)");
   }
   return o;
 }
@@ -132,7 +125,6 @@ json task_config_to_json(const TaskConfig& c) {
   j["action"] = action_layout_name(c.action);
   j["observation"] = observation_json(c.observation);
   j["reward"] = {{"omega_centre", c.reward.omega_centre}, {"omega_slope", c.reward.omega_slope}};
-  j["reward_aim"] = reward_aim_name(c.reward_aim);
   j["task_scale"] = task_scale_name(c.task_scale);
   j["control_mode"] = control_mode_name(c.control_mode);
   return j;
@@ -162,8 +154,6 @@ TaskConfig task_config_from_json(const json& settings, TaskConfig c, bool check)
         else if (k == "omega_slope") c.reward.omega_slope = number(v, "reward." + k);
         else refuse("reward." + k, "is not a task setting (reward has omega_centre, omega_slope)");
       }
-    } else if (key == "reward_aim") {
-      c.reward_aim = named(key, [&] { return parse_reward_aim(text(value, key)); });
     } else if (key == "task_scale") {
       c.task_scale = named(key, [&] { return parse_task_scale(text(value, key)); });
     } else if (key == "control_mode") {

@@ -141,9 +141,3 @@ def test_widened_rotation_actor_starts_the_push_pull_actor(tmp_path):
     assert np.max(np.abs(expected - both)) < 1e-5
     with pytest.raises(ValueError, match="obs/3 rotation actor"):
         widen_to_push_pull(widened)
-    # obs/7 (--since-progress): one more zero-weight input; the same outputs whatever it reads.
-    widened7 = widen_to_push_pull(original, since_progress=True)
-    assert (widened7["obs_layout"], widened7["obs_size"]) == ("guidewire-nav/obs/7", 15)
-    (tmp_path / "widened7.json").write_text(json.dumps(widened7))
-    obs7 = np.hstack([obs, rng.uniform(0, 1, (300, 1)).astype(np.float32)])
-    assert np.max(np.abs(_run(binary, tmp_path / "widened7.json", obs7) - both)) < 1e-6

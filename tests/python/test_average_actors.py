@@ -9,7 +9,7 @@ from guidewire_nav.average_actors import average_actors, main
 from guidewire_nav.export_actor import FORMAT
 
 
-def _actor(seed: int, sizes=(11, 4, 1), layout="guidewire-nav/obs/2") -> dict:
+def _actor(seed: int, sizes=(11, 4, 1), layout="guidewire-nav/obs/1") -> dict:
     rng = np.random.default_rng(seed)
     layers = []
     for i, (n_in, n_out) in enumerate(zip(sizes[:-1], sizes[1:])):
@@ -38,7 +38,7 @@ def test_every_weight_is_the_mean_of_the_inputs():
 
 @pytest.mark.parametrize("other, named", [
     (_actor(1, sizes=(11, 5, 1)), "layers"),
-    (_actor(1, layout="guidewire-nav/obs/1"), "obs_layout"),
+    (_actor(1, layout="guidewire-nav/obs/3"), "obs_layout"),
 ])
 def test_incompatible_actors_are_refused_naming_the_difference(other, named):
     with pytest.raises(ValueError, match=f"second: {named}"):

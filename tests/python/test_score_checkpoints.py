@@ -56,8 +56,9 @@ def test_a_runs_layout_follows_its_settings():
     assert score_checkpoints.run_layout({"task": ""}) == "guidewire-nav/obs/3"
     assert score_checkpoints.run_layout({"task": '{"observation": "guidewire-nav/obs/1"}'}) == "guidewire-nav/obs/1"
     assert score_checkpoints.run_layout({"task": "training/tasks/push_pull.json"}) == "guidewire-nav/obs/5"
-    # runs before it (settings.json with the observation flags)
-    assert score_checkpoints.run_layout({}) == "guidewire-nav/obs/2"
+    # runs before it (settings.json with the observation flags); obs/2 and obs/7 are retired
+    with pytest.raises(SystemExit, match="retired"):
+        score_checkpoints.run_layout({})
     assert score_checkpoints.run_layout({"omega_plane": "correct_branch"}) == "guidewire-nav/obs/1"
     assert score_checkpoints.run_layout({"omega_plane": "approach", "omega_side": True}) == "guidewire-nav/obs/3"
     assert score_checkpoints.run_layout({"omega_side": True, "junctions": "combined"}) == "guidewire-nav/obs/4"

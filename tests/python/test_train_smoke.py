@@ -135,9 +135,9 @@ def test_wall_time_budget_stops_training_and_still_exports(tmp_path):
 
 
 def test_fine_tuning_starts_from_the_given_networks(smoke_run, tmp_path):
-    """--init-model continues from a saved SAC (here the smoke run's final model) with the roll
-    disturbance and random starts on: the exported actor starts as that model's actor, not as a fresh
-    network; both settings are recorded and server_args passes random starts on to the servers."""
+    """--init-model continues from a saved SAC (here the smoke run's final model) under another task (a force
+    cost and a force limit): the exported actor starts as that model's actor, not as a fresh network; the
+    servers ran the --task given, and the run records it."""
     import torch
     from stable_baselines3 import SAC
     from guidewire_nav import train
@@ -145,7 +145,7 @@ def test_fine_tuning_starts_from_the_given_networks(smoke_run, tmp_path):
     start = SAC.load(smoke_run / "final_model.zip", device="cpu")
     argv = ["--out", str(tmp_path), "--anatomies", "t1_straight_y", "--total-steps", "60", "--learning-starts", "1000",
             "--envs", "1", "--eval-episodes", "0",
-            "--task", '{"roll_disturbance_probability": 0.5, "random_start_probability": 0.5}',
+            "--task", '{"reward_force_per_N": 0.5, "force_limit_N": 1.5}',
             "--no-progress", "--init-model", str(smoke_run / "final_model.zip")]
     assert train.main(argv) == 0
     tuned = SAC.load(tmp_path / "final_model.zip", device="cpu")
@@ -155,8 +155,8 @@ def test_fine_tuning_starts_from_the_given_networks(smoke_run, tmp_path):
     settings = json.loads((tmp_path / "settings.json").read_text())
     assert settings["init_model"].endswith("final_model.zip")
     # the run records the whole task its servers ran: the --task keys, and the defaults for the rest
-    assert settings["task_settings"]["roll_disturbance_probability"] == 0.5
-    assert settings["task_settings"]["random_start_probability"] == 0.5
+    assert settings["task_settings"]["reward_force_per_N"] == 0.5
+    assert settings["task_settings"]["force_limit_N"] == 1.5
     assert settings["task_settings"]["push_mm_per_s"] == 10.0
     assisted = train.server_args(train.Settings(push_pull=True, recovery=3, recovery_assist=True))
     assert "--recovery-assist" in assisted and "--recovery-assist" not in train.server_args(train.Settings())
@@ -251,7 +251,7 @@ def test_score_checkpoints_exports_and_scores_a_run(smoke_run, capsys):
     assert score_checkpoints.main([str(smoke_run), "--steps", "100", "--episodes", "1", "--train-episode-scale", "0",
                                    "--threads", "2"]) == 0
     exported = json.loads((smoke_run / "scored" / "ckpt_100.json").read_text())
-    assert exported["obs_layout"] == "guidewire-nav/obs/2"  # the run's omega plane (settings.json)
+    assert exported["obs_layout"] == "guidewire-nav/obs/3"  # the run's task (settings.json): the default
     report = json.loads((smoke_run / "scores.json").read_text())
     s = report["scores"]["100"]
     assert s["validation_episodes"] == 15  # 4 + 4 + 3 + 4 validation targets, one episode each

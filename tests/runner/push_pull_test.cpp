@@ -95,79 +95,43 @@ TEST_CASE("push/pull: stopping holds the wire and is no stall, pulling stops at 
   CHECK_THROWS_WITH(gw::step_episode(task, s, gw::Action{0.0, std::nan("")}), Catch::Contains("insertion"));
 }
 
-TEST_CASE("push/pull obs/7: since_progress counts the steps without headway while nothing else moves",
-          "[runner][push_pull]") {
-  // The obs/5 actor's standstill (results/push_pull): standing still, the obs/5 entries settle and repeat;
-  // obs/7's fifteenth rises by 1/stuck_steps a step to 1, and is 0 again once pushing gains progress.
-  gw::NavigationTask task = t1_task(true, 0);
-  task.config.observation.since_progress = true;
-  REQUIRE(std::string(task.config.observation.name()) == "guidewire-nav/obs/7");
-  gw::EpisodeState s = gw::reset_episode(task, 0, 1, 3);
-  CHECK(s.obs[gw::obs_index::kSinceProgress] == 0.0);
-  for (int k = 0; k < 20; ++k)
-    REQUIRE(gw::step_episode(task, s, gw::Action{0.0, 1.0}).obs[gw::obs_index::kSinceProgress] <=
-            5.0 / task.config.stuck_steps);
-  for (int k = 0; k < 5; ++k) gw::step_episode(task, s, gw::Action{0.0, 0.0});  // the wire settles
-  const gw::Observation settled = gw::step_episode(task, s, gw::Action{0.0, 0.0}).obs;
-  const double start = settled[gw::obs_index::kSinceProgress];
-  const Eigen::Vector3d tip = s.tip;
-  CHECK(start > 0.0);
-  for (int k = 1; k <= 2 * task.config.stuck_steps; ++k) {
-    const gw::StepOutcome out = gw::step_episode(task, s, gw::Action{0.0, 0.0});
-    REQUIRE((s.tip - tip).norm() < 0.5);  // the wire stands (it only settles)
-    REQUIRE(out.obs[gw::obs_index::kSinceProgress] ==
-            Approx(std::min(1.0, start + static_cast<double>(k) / task.config.stuck_steps)));
-  }
-  double since = 1.0;
-  for (int k = 0; k < 10 && since > 0.0; ++k)
-    since = gw::step_episode(task, s, gw::Action{0.0, 1.0}).obs[gw::obs_index::kSinceProgress];
-  CHECK(since == 0.0);
-  // The paper's task computes the entry too; its actors take only their layout's leading entries.
-  const gw::NavigationTask paper = t1_task(false, 0);
-  gw::EpisodeState p = gw::reset_episode(paper, 0, 1, 3);
-  CHECK(gw::step_episode(paper, p, 0.0).obs[gw::obs_index::kSinceProgress] <= 1.0 / paper.config.stuck_steps);
-}
-
 TEST_CASE("push/pull: a time cost comes off every step, stopped or moving, and nothing else changes",
           "[runner][push_pull]") {
   gw::NavigationTask plain = t1_task(true, 0), costly = t1_task(true, 0);
-  costly.config.reward_time_per_step = 0.25;
+  plain.config.reward_time_per_step = 0.0;  // the first push/pull run's reward
+  costly.config.reward_time_per_step = 0.25;  // the shipped push/pull actor's (the default)
   gw::EpisodeState a = gw::reset_episode(plain, 0, 1, 3), b = gw::reset_episode(costly, 0, 1, 3);
   for (int k = 0; k < 40; ++k) {
     const gw::Action act{0.3, k < 10 ? 1.0 : (k < 25 ? 0.0 : 1.0)};  // push, stop, push on
     const gw::StepOutcome oa = gw::step_episode(plain, a, act), ob = gw::step_episode(costly, b, act);
     REQUIRE(a.tip == b.tip);
     REQUIRE(ob.reward == Approx(oa.reward - 0.25).margin(1e-12));
-    if (k >= 10 && k < 25) REQUIRE(ob.reward == Approx(-0.2 * 0.3 - 0.25));  // stopping costs time now
   }
   costly.config.reward_time_per_step = -1.0;
   CHECK_THROWS_WITH(gw::check_task_config(costly.config), Catch::Contains("reward_time_per_step"));
 }
 
-TEST_CASE("push/pull: the aim paid by its change over the step, whatever the wire does, and by new depth by default",
+TEST_CASE("push/pull: the aim is paid by its change over the step, whatever the wire does; progress by new depth",
           "[runner][push_pull]") {
-  gw::NavigationTask depth = t1_task(true, 0), change = t1_task(true, 0);
-  CHECK(depth.config.reward_aim == gw::RewardAim::kByDepth);
-  change.config.reward_aim = gw::RewardAim::kByChange;
-  const gw::RewardShape shape = depth.config.reward;
-  auto orientation = [&shape](double w) { return 2.0 / (1.0 + std::exp(shape.omega_slope * (w - shape.omega_centre))) - 1.0; };
-  gw::EpisodeState a = gw::reset_episode(depth, 0, 1, 3), b = gw::reset_episode(change, 0, 1, 3);
-  double omega_before = b.obs[gw::obs_index::kOmega];
+  gw::NavigationTask task = t1_task(true, 0);
+  const gw::TaskConfig& c = task.config;
+  auto orientation = [&c](double w) {
+    return 2.0 / (1.0 + std::exp(c.reward.omega_slope * (w - c.reward.omega_centre))) - 1.0;
+  };
+  gw::EpisodeState s = gw::reset_episode(task, 0, 1, 3);
+  double omega_before = s.obs[gw::obs_index::kOmega];
   for (int k = 0; k < 40; ++k) {
     const gw::Action act{0.3, k < 10 ? 1.0 : (k < 25 ? 0.0 : 1.0)};  // push (new depth 1), stop (0), push on
-    const gw::StepOutcome oa = gw::step_episode(depth, a, act), ob = gw::step_episode(change, b, act);
-    REQUIRE(a.tip == b.tip);  // the reward changes nothing else
-    const double omega = ob.obs[gw::obs_index::kOmega];
-    const double aim_change = orientation(omega) - orientation(omega_before);
-    if (k < 10)  // new depth 1: depth pays O(omega) + P, change pays O(omega) - O(omega before) + P
-      REQUIRE(ob.reward - oa.reward == Approx(-orientation(omega_before)).margin(1e-9));
-    else if (k < 25)  // stopped: depth pays no aim, change pays its change; both pay the effort
-      REQUIRE(ob.reward - oa.reward == Approx(aim_change).margin(1e-9));
+    const gw::StepOutcome out = gw::step_episode(task, s, act);
+    const double omega = out.obs[gw::obs_index::kOmega];
+    const double progress = 0.5 * (1.0 - out.obs[gw::obs_index::kLambda]);
+    const double rest = -0.2 * 0.3 - c.reward_time_per_step;
+    if (k < 10)  // new depth 1: the aim's change and the progress term
+      REQUIRE(out.reward == Approx(orientation(omega) - orientation(omega_before) + progress + rest).margin(1e-9));
+    else if (k < 25)  // stopped: no new depth, the aim's change only
+      REQUIRE(out.reward == Approx(orientation(omega) - orientation(omega_before) + rest).margin(1e-9));
     omega_before = omega;
   }
-  CHECK(gw::parse_reward_aim("change") == gw::RewardAim::kByChange);
-  CHECK(std::string(gw::reward_aim_name(gw::RewardAim::kByDepth)) == "depth");
-  CHECK_THROWS_WITH(gw::parse_reward_aim("level"), Catch::Contains("depth, change"));
 }
 
 TEST_CASE("push/pull: a stall is wire pushed in without progress", "[runner][push_pull]") {
@@ -198,8 +162,11 @@ TEST_CASE("push/pull with recovery: the actor pulls out of a wrong child itself,
   gw::EpisodeState s = gw::reset_episode(task, 0, 1, 5);
   gw::StepOutcome out;
   // 1. Into the wrong child: the strict episode ends there, the procedure goes on.
-  do out = gw::step_episode(task, s, gw::Action{gwtest::aim_rotation(s.obs, true), 1.0});
-  while (!out.info.strict_end && !s.done);
+  double omega_before = s.obs[gw::obs_index::kOmega];
+  do {
+    omega_before = s.obs[gw::obs_index::kOmega];
+    out = gw::step_episode(task, s, gw::Action{gwtest::aim_rotation(s.obs, true), 1.0});
+  } while (!out.info.strict_end && !s.done);
   REQUIRE(out.info.strict_end);
   REQUIRE(out.info.wrong_branch);
   CHECK_FALSE(out.terminated);
@@ -208,8 +175,9 @@ TEST_CASE("push/pull with recovery: the actor pulls out of a wrong child itself,
   CHECK(out.obs[gw::obs_index::kWrongBranch] == 1.0);
   CHECK(out.info.in_control);
   // In the wrong child the step costs reward_wrong_branch more than the push/pull reward without it.
-  const double without = gw::push_pull_reward(out.obs[gw::obs_index::kOmega], out.obs[gw::obs_index::kLambda],
-                                              out.obs[gw::obs_index::kAction], 1.0, false, 0.0, 0.0, task.config.reward);
+  const double without = gw::push_pull_reward(out.obs[gw::obs_index::kOmega], omega_before, out.obs[gw::obs_index::kLambda],
+                                              out.obs[gw::obs_index::kAction], 1.0, false, 0.0,
+                                              task.config.reward_time_per_step, task.config.reward);
   CHECK(out.reward == Approx(without - task.config.reward_wrong_branch));
   // 2. Pull back until the tip is out of it (bounded).
   int pulled = 0;
@@ -262,17 +230,13 @@ TEST_CASE("push/pull: an act/2 actor sets the task's layouts and its insertion r
   // Back to a rotation-only actor: its layouts again.
   gw::make_controller("scripted-omega", "")->adapt(config);  // baselines leave the config alone
   CHECK(config.action == gw::ActionLayout::kRotationInsertion);
-  CHECK_FALSE(config.observation.since_progress);
-  gw::TaskConfig config7;
-  gw::make_controller("policy", write("guidewire-nav/obs/7", 15, "guidewire-nav/act/2", 2))->adapt(config7);
-  CHECK(std::string(config7.observation.name()) == "guidewire-nav/obs/7");
-  CHECK_THROWS_WITH(gw::make_controller("policy", write("guidewire-nav/obs/7", 14, "guidewire-nav/act/2", 2)),
-                    Catch::Contains("takes 14") && Catch::Contains("has 15"));
+  CHECK_THROWS_WITH(gw::make_controller("policy", write("guidewire-nav/obs/7", 15, "guidewire-nav/act/2", 2)),
+                    Catch::Contains("unknown observation"));  // obs/7 is retired (docs/policy_history.md)
   // Layouts that do not go together, or sizes that are not the layout's, are refused by name.
   CHECK_THROWS_WITH(gw::make_controller("policy", write("guidewire-nav/obs/5", 14, "guidewire-nav/act/1", 1)),
-                    Catch::Contains("obs/5 and obs/7 go with act/2"));
+                    Catch::Contains("obs/5 goes with act/2"));
   CHECK_THROWS_WITH(gw::make_controller("policy", write("guidewire-nav/obs/3", 12, "guidewire-nav/act/2", 2)),
-                    Catch::Contains("obs/5 and obs/7 go with act/2"));
+                    Catch::Contains("obs/5 goes with act/2"));
   CHECK_THROWS_WITH(gw::make_controller("policy", write("guidewire-nav/obs/5", 14, "guidewire-nav/act/2", 1)),
                     Catch::Contains("outputs 1") && Catch::Contains("has 2"));
   CHECK_THROWS_WITH(gw::make_controller("policy", write("guidewire-nav/obs/5", 14, "guidewire-nav/act/9", 2)),

@@ -155,22 +155,24 @@ TEST_CASE("controllers: an actor gets the omega it was trained with, an unknown 
   REQUIRE(config.observation.omega_plane == gw::OmegaPlane::kApproach);
   gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/1"))->adapt(config);
   CHECK(config.observation.omega_plane == gw::OmegaPlane::kCorrectBranch);
-  gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/2"))->adapt(config);
-  CHECK(config.observation.omega_plane == gw::OmegaPlane::kApproach);
   CHECK_FALSE(config.observation.omega_side);
   gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/3", 12))->adapt(config);
+  CHECK(config.observation.omega_plane == gw::OmegaPlane::kApproach);
   CHECK(config.observation.omega_side);
-  gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/2"))->adapt(config);
+  gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/1"))->adapt(config);
   CHECK_FALSE(config.observation.omega_side);
   config.observation.omega_plane = gw::OmegaPlane::kCorrectBranch;
   gw::make_controller("scripted-omega", "")->adapt(config);  // baselines leave the config alone
   CHECK(config.observation.omega_plane == gw::OmegaPlane::kCorrectBranch);
   CHECK_THROWS_WITH(gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/0")),
-                    Catch::Contains("guidewire-nav/obs/0") && Catch::Contains("guidewire-nav/obs/2"));
+                    Catch::Contains("guidewire-nav/obs/0") && Catch::Contains("guidewire-nav/obs/3"));
+  // a retired layout is an unknown one (docs/policy_history.md)
+  CHECK_THROWS_WITH(gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/2")),
+                    Catch::Contains("unknown observation"));
   // The input count must be the layout's: obs/3 has omega's sine as a twelfth entry.
   CHECK_THROWS_WITH(gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/3", 11)),
                     Catch::Contains("takes 11") && Catch::Contains("has 12"));
-  CHECK_THROWS_WITH(gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/2", 12)),
+  CHECK_THROWS_WITH(gw::make_controller("policy", write_actor(dir, "guidewire-nav/obs/1", 12)),
                     Catch::Contains("takes 12") && Catch::Contains("has 11"));
 }
 

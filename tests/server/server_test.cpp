@@ -9,6 +9,7 @@
 #include "apps/server/tcp_server.hpp"
 #include "tests/server/socket_client.hpp"
 #include "tests/task/hand_made_graphs.hpp"
+#include "engine/task/task_config_json.hpp"
 
 using nlohmann::json;
 
@@ -60,11 +61,11 @@ TEST_CASE("server: spec describes spaces, protocol and layout", "[server]") {
   const json spec = ask(c, R"({"cmd":"spec"})");
   CHECK(spec.at("ok") == true);
   CHECK(spec.at("protocol") == "guidewire-nav/protocol/1");
-  CHECK(spec.at("obs_layout") == "guidewire-nav/obs/2");  // default omega plane: approach
-  CHECK(spec.at("task").at("omega_plane") == "approach");
-  CHECK(spec.at("task").at("reward").at("omega_centre") == 0.1);  // paper Eq. 3 unless told otherwise
-  CHECK(spec.at("observation_space").at("shape") == json::array({11}));
-  CHECK(spec.at("observation_space").at("low").size() == 11);
+  CHECK(spec.at("obs_layout") == "guidewire-nav/obs/3");  // the default task: the shipped actor's
+  CHECK(spec.at("task") == gw::task_config_to_json(task.config));  // the whole task, as --task reads it
+  CHECK(spec.at("task").at("reward").at("omega_centre") == -0.5);
+  CHECK(spec.at("observation_space").at("shape") == json::array({12}));
+  CHECK(spec.at("observation_space").at("low").size() == 12);
   CHECK(spec.at("action_space").at("shape") == json::array({1}));
   CHECK(spec.at("action_space").at("low") == json::array({-1.0}));
   CHECK(spec.at("anatomies").size() == 2);
@@ -73,13 +74,13 @@ TEST_CASE("server: spec describes spaces, protocol and layout", "[server]") {
 
 TEST_CASE("server: with omega_side the layout is obs/3 and every observation has omega's sine", "[server]") {
   gw::TaskConfig config;
-  config.observation.omega_side = true;
+  REQUIRE(config.observation.omega_side);  // the default
   const gw::NavigationTask task = y_task(config);
   RunningServer s(task);
   gwtest::RawClient c(s.server.port());
   const json spec = ask(c, R"({"cmd":"spec"})");
   CHECK(spec.at("obs_layout") == "guidewire-nav/obs/3");
-  CHECK(spec.at("task").at("omega_side") == true);
+  CHECK(spec.at("task").at("observation").at("omega_side") == true);
   CHECK(spec.at("observation_space").at("shape") == json::array({12}));
   CHECK(spec.at("observation_space").at("names").back() == "omega_side");
   CHECK(spec.at("observation_space").at("high").size() == 12);
@@ -97,13 +98,13 @@ TEST_CASE("server: reset and step replies, close ends the connection", "[server]
   gwtest::RawClient c(s.server.port());
   const json r = ask(c, R"({"cmd":"reset","seed":5,"options":{"anatomy":"tree","target":2}})");
   REQUIRE(r.at("ok") == true);
-  CHECK(r.at("obs").size() == 11);
+  CHECK(r.at("obs").size() == 12);
   CHECK(r.at("info").at("anatomy") == "tree");
   CHECK(r.at("info").at("target") == 2);
   CHECK(r.at("info").at("seed") == 5);
   const json st = ask(c, R"({"cmd":"step","action":[0.25]})");
   REQUIRE(st.at("ok") == true);
-  CHECK(st.at("obs").size() == 11);
+  CHECK(st.at("obs").size() == 12);
   CHECK(st.at("reward").is_number());
   CHECK(st.at("terminated") == false);
   CHECK(st.at("truncated") == false);

@@ -271,7 +271,7 @@ TEST_CASE("layout obs/4 is obs/3 with combined junctions", "[task][junctions]") 
   c = gw::ObservationLayout::parse("guidewire-nav/obs/3");
   CHECK(c.junctions == gw::JunctionModel::kSeparate);
   c.omega_side = false;
-  c.junctions = gw::JunctionModel::kCombined;  // obs/2 with combined junctions: no such layout
+  c.junctions = gw::JunctionModel::kCombined;  // combined junctions without omega's sine: no such layout
   CHECK_THROWS_WITH(c.name(), Catch::Contains("obs/4"));
   CHECK(gw::parse_junction_model("combined") == gw::JunctionModel::kCombined);
   CHECK_THROWS_WITH(gw::parse_junction_model("merged"), Catch::Contains("separate, combined, kway"));

@@ -16,7 +16,8 @@ gw::TaskConfig changed_config() {
   c.initial_insertion_mm = 3.0;
   c.max_start_tilt_rad = 0.2;
   c.action = gw::ActionLayout::kRotationInsertion;
-  c.observation = gw::ObservationLayout::parse("guidewire-nav/obs/7");
+  // every observation field away from its default: valid keys, but no layout has them together
+  c.observation = {gw::OmegaPlane::kCorrectBranch, false, gw::JunctionModel::kCombined, true};
   c.tip_sample_spacing_mm = 1.5;
   c.lookahead_mm = 5.0;
   c.branch_direction_mm = 7.0;
@@ -36,11 +37,6 @@ gw::TaskConfig changed_config() {
   c.stuck_steps = 50;
   c.stuck_progress_mm = 2.0;
   c.wire_reserve_mm = 6.0;
-  c.roll_disturbance_probability = 0.5;
-  c.roll_disturbance_min_rad = 1.0;
-  c.roll_disturbance_max_rad = 2.0;
-  c.random_start_probability = 0.25;
-  c.random_start_margin_mm = 9.0;
   c.recovery_attempts = 2;
   c.recovery_retract_mm = 18.0;
   c.recovery_pull_mm_per_s = 8.0;
@@ -49,7 +45,6 @@ gw::TaskConfig changed_config() {
   c.recovery_assist = true;
   c.reward_wrong_branch = 2.0;
   c.reward_time_per_step = 0.5;
-  c.reward_aim = gw::RewardAim::kByDepth;
   c.reward_force_per_N = 0.75;
   c.force_limit_N = 1.25;
   c.close_junction_diameters = 3.0;
@@ -63,7 +58,7 @@ TEST_CASE("task JSON: a round trip keeps every field, and every field is written
   const nlohmann::json j = gw::task_config_to_json(changed);
   CHECK(j.at("format") == gw::kTaskFormat);
   // Read into the defaults, the JSON gives `changed` back: every field changed above is written and read.
-  const gw::TaskConfig back = gw::task_config_from_json(j);
+  const gw::TaskConfig back = gw::task_config_from_json(j, {}, /*check=*/false);  // `changed` is no layout
   CHECK(gw::task_config_to_json(back) == j);
   // ... and it differs from the defaults' JSON in every key but "format": no field is left out of the writer.
   const nlohmann::json defaults = gw::task_config_to_json(gw::TaskConfig{});
@@ -81,7 +76,8 @@ TEST_CASE("task JSON: a round trip keeps every field, and every field is written
 
 TEST_CASE("task JSON: a partial object changes only its keys; the observation may be a layout name") {
   const gw::TaskConfig base = changed_config();
-  const gw::TaskConfig c = gw::task_config_from_json({{"push_mm_per_s", 12.0}, {"reward", {{"omega_slope", 6.0}}}}, base);
+  const gw::TaskConfig c =
+      gw::task_config_from_json({{"push_mm_per_s", 12.0}, {"reward", {{"omega_slope", 6.0}}}}, base, /*check=*/false);
   CHECK(c.push_mm_per_s == 12.0);
   CHECK(c.reward.omega_slope == 6.0);
   CHECK(c.reward.omega_centre == base.reward.omega_centre);
@@ -101,8 +97,7 @@ TEST_CASE("task JSON: the defaults are the shipped rotation actor's task (obs/3,
   CHECK(d.action == gw::ActionLayout::kRotation);
   CHECK(d.reward.omega_centre == -0.5);
   CHECK(d.reward.omega_slope == 8.0);
-  // the push/pull actor's reward terms, read only under act/2
-  CHECK(d.reward_aim == gw::RewardAim::kByChange);
+  // the push/pull actor's time cost, read only under act/2
   CHECK(d.reward_time_per_step == 0.25);
   // the paper's task otherwise: strict, no force limit, no robustness extras
   CHECK(d.recovery_attempts == 0);
@@ -128,6 +123,8 @@ TEST_CASE("task JSON: bad input is refused naming the key") {
   CHECK_THAT(refused({{"action", "guidewire-nav/act/9"}}), Contains("\"action\""));
   CHECK_THAT(refused({{"task_scale", "big"}}), Contains("\"task_scale\""));
   CHECK_THAT(refused({{"observation", "guidewire-nav/obs/99"}}), Contains("\"observation\""));
+  CHECK_THAT(refused({{"observation", "guidewire-nav/obs/7"}}), Contains("is not one of"));  // retired
+  CHECK_THAT(refused({{"roll_disturbance_probability", 0.5}}), Contains("is not a task setting"));  // retired
   CHECK_THAT(refused({{"format", "guidewire-nav/task/0"}}), Contains("\"format\""));
   CHECK_THAT(refused(nlohmann::json::array()), Contains("must be a JSON object"));
   // valid keys, an invalid combination: the check names the field

@@ -223,42 +223,36 @@ TEST_CASE("reward sigmoid can be shifted and steepened", "[task]") {
 }
 
 TEST_CASE("observation layout is fixed and bounded", "[task]") {
-  CHECK(gw::kObservationSize == 15);
-  CHECK(std::string(gw::TaskConfig{}.observation.name()) == "guidewire-nav/obs/2");  // the task's default
+  CHECK(gw::kObservationSize == 14);
+  CHECK(std::string(gw::TaskConfig{}.observation.name()) == "guidewire-nav/obs/3");  // the shipped actor's
   gw::ObservationLayout layout;
+  CHECK(std::string(layout.name()) == "guidewire-nav/obs/3");
+  CHECK(layout.size() == 12);
+  layout.omega_side = false;  // obs/2 is retired: the approach plane goes with omega's sine
+  CHECK_THROWS_WITH(layout.name(), Catch::Contains("obs/3") && Catch::Contains("retired"));
   layout.omega_plane = gw::OmegaPlane::kCorrectBranch;
   CHECK(std::string(layout.name()) == "guidewire-nav/obs/1");
   CHECK(layout.size() == 11);
   layout.omega_plane = gw::OmegaPlane::kApproach;
-  CHECK(std::string(layout.name()) == "guidewire-nav/obs/2");
-  CHECK(layout.size() == 11);
   layout.omega_side = true;
-  CHECK(std::string(layout.name()) == "guidewire-nav/obs/3");
-  CHECK(layout.size() == 12);
   layout.push_pull = true;  // the push/pull actor's layout: obs/3 and two entries
   CHECK(std::string(layout.name()) == "guidewire-nav/obs/5");
   CHECK(layout.size() == 14);
   CHECK(gw::ObservationLayout::parse("guidewire-nav/obs/5").push_pull);
-  layout.since_progress = true;  // obs/7: obs/5 and the time since the tip last progressed
-  CHECK(std::string(layout.name()) == "guidewire-nav/obs/7");
-  CHECK(layout.size() == 15);
-  CHECK(gw::ObservationLayout::parse("guidewire-nav/obs/7").since_progress);
-  layout.push_pull = false;  // not without the push/pull entries
-  CHECK_THROWS_WITH(layout.name(), Catch::Contains("obs/7") && Catch::Contains("push/pull"));
-  layout.push_pull = true;
-  layout.since_progress = false;
+  CHECK_THROWS_WITH(gw::ObservationLayout::parse("guidewire-nav/obs/7"), Catch::Contains("is not one of"));
   layout.omega_side = false;  // not without omega's sine
   CHECK_THROWS_WITH(layout.name(), Catch::Contains("obs/5"));
   layout.omega_side = true;
   layout.push_pull = false;
   layout.omega_plane = gw::OmegaPlane::kCorrectBranch;  // no layout has the sine in the paper's plane
   CHECK_THROWS_WITH(layout.name(), Catch::Contains("approach"));
-  for (const char* name : {"guidewire-nav/obs/1", "guidewire-nav/obs/2", "guidewire-nav/obs/3"})
+  for (const char* name : {"guidewire-nav/obs/1", "guidewire-nav/obs/3", "guidewire-nav/obs/4", "guidewire-nav/obs/5",
+                           "guidewire-nav/obs/6"})
     CHECK(std::string(gw::ObservationLayout::parse(name).name()) == name);
-  CHECK_THROWS_WITH(gw::ObservationLayout::parse("guidewire-nav/obs/9"),
-                    Catch::Contains("guidewire-nav/obs/2") && Catch::Contains("guidewire-nav/obs/3"));
+  CHECK_THROWS_WITH(gw::ObservationLayout::parse("guidewire-nav/obs/2"),
+                    Catch::Contains("guidewire-nav/obs/1") && Catch::Contains("guidewire-nav/obs/3"));
   CHECK(std::string(gw::observation_names()[gw::obs_index::kOmegaSide]) == "omega_side");
-  CHECK(std::string(gw::observation_names()[gw::obs_index::kSinceProgress]) == "since_progress");
+  CHECK(std::string(gw::observation_names()[gw::obs_index::kWrongBranch]) == "wrong_branch");
   CHECK(gw::parse_omega_plane("approach") == gw::OmegaPlane::kApproach);
   CHECK_THROWS_WITH(gw::parse_omega_plane("sideways"), Catch::Contains("correct_branch, approach"));
   CHECK(std::string(gw::observation_names()[gw::obs_index::kOmega]) == "omega");

@@ -8,15 +8,18 @@ got) and talks to it over a TCP socket with the newline-delimited JSON protocol 
     env = GuidewireEnv(host="10.0.0.5", port=5555)         # remote server
     env = GuidewireEnv(options={"anatomy": "t1_straight_y", "target": 2})
 
-Observation: 11 float32 values (engine/task/observation.hpp): theta_t (3), theta_{t-n dt} (3),
-lambda_t, lambda_{t-n dt}, a_t, omega, s. Layout "guidewire-nav/obs/2" (omega in the approach plane,
-the server's default) or "guidewire-nav/obs/1" (the paper's omega: ``server_args=["--omega-plane",
-"correct_branch"]``); "guidewire-nav/obs/3" (``server_args=["--omega-side"]``) adds a twelfth, omega's
-sine; "guidewire-nav/obs/5" (``server_args=["--push-pull"]``) adds the last insertion and a wrong-branch flag,
-"guidewire-nav/obs/7" (``server_args=["--push-pull", "--since-progress"]``) the time since the tip last progressed.
-The exported actor records which one it was trained on.  Action (the spec's ``action_layout``): one float in
-[-1, 1], the proximal rotation rate as a fraction of the maximum ("guidewire-nav/act/1", paper Eq. 3's reward);
-with ``--push-pull`` two, rotation and insertion speed ("guidewire-nav/act/2", engine/task/reward.hpp).
+The task is the server's (``server_args=["--task", FILE_OR_JSON]`` and the task flags, docs/task_settings.md; the
+spec's ``task`` holds all of it). Observation (the spec's ``obs_layout``, engine/task/observation.hpp): by default
+"guidewire-nav/obs/3", the shipped actor's, 12 float32 values: theta_t (3), theta_{t-n dt} (3), lambda_t,
+lambda_{t-n dt}, a_t, omega (in the approach plane), s, omega_side (omega's sine). The paper's "guidewire-nav/obs/1"
+(11 values, omega in the correct branch's normal plane): ``server_args=["--task", "training/tasks/paper.json"]``
+(with the paper's reward sigmoid) or ``server_args=["--omega-plane", "correct_branch"]``; "guidewire-nav/obs/5"
+(``server_args=["--push-pull"]``) adds the last insertion and a wrong-branch flag, "guidewire-nav/obs/7"
+(``server_args=["--task", '{"observation": "guidewire-nav/obs/7"}', "--push-pull"]``) the time since the tip last
+progressed. The exported actor records which one it was trained on.  Action (the spec's ``action_layout``): one
+float in [-1, 1], the proximal rotation rate as a fraction of the maximum ("guidewire-nav/act/1", paper Eq. 3's
+reward with the task's sigmoid); with ``--push-pull`` two, rotation and insertion speed ("guidewire-nav/act/2",
+engine/task/reward.hpp).
 Info after a step: the server's fields (anatomy, target, success, wrong_branch, stuck, step_limit, ...)
 and ``is_success`` (= success; the name SB3 reads).
 

@@ -141,14 +141,12 @@ def export_sac_actor(model, path, obs_layout: str = "unspecified", vecnormalize=
 PUSH_PULL_INSERTION_BIAS = 2.0  # tanh(2) = 0.96: a widened actor starts out pushing at 96% of the push speed
 
 
-def widen_to_push_pull(d: dict, insertion_bias: float = PUSH_PULL_INSERTION_BIAS,
-                       since_progress: bool = False) -> dict:
-    """A rotation actor (obs/3, act/1) as the start of a push/pull actor (obs/5, or obs/7 with since_progress).
+def widen_to_push_pull(d: dict, insertion_bias: float = PUSH_PULL_INSERTION_BIAS) -> dict:
+    """A rotation actor (obs/3, act/1) as the start of a push/pull actor (obs/5).
 
-    in:  d, an actor dictionary of layout guidewire-nav/obs/3 and guidewire-nav/act/1; since_progress: widen to
-         obs/7 (obs/5 and the time since the tip last progressed, engine/task/observation.hpp)
-    out: a new dictionary of layouts obs/5 (obs/7) and act/2 whose rotation output is d's on every observation
-         (the new inputs, the last insertion, the wrong-branch flag and since_progress, get zero weights) and whose insertion
+    in:  d, an actor dictionary of layout guidewire-nav/obs/3 and guidewire-nav/act/1
+    out: a new dictionary of layouts obs/5 and act/2 whose rotation output is d's on every observation
+         (the new inputs, the last insertion and the wrong-branch flag, get zero weights) and whose insertion
          output is tanh(insertion_bias) everywhere (zero weights). Why: started so, the push/pull run begins as
          the shipped rotation actor under a near-constant push and has to learn when to stop and pull back,
          not to aim again from scratch (the rotation actor took 94,522 steps for that)."""
@@ -161,7 +159,7 @@ def widen_to_push_pull(d: dict, insertion_bias: float = PUSH_PULL_INSERTION_BIAS
     first, last = layers[0], layers[-1]
     rows, cols = first["shape"]
     w = np.asarray(first["weight"], dtype=np.float64).reshape(rows, cols)
-    extra = 3 if since_progress else 2
+    extra = 2
     first["weight"] = np.hstack([w, np.zeros((rows, extra))]).reshape(-1).tolist()
     first["shape"] = [rows, cols + extra]
     hidden = last["shape"][1]
@@ -169,7 +167,7 @@ def widen_to_push_pull(d: dict, insertion_bias: float = PUSH_PULL_INSERTION_BIAS
     last["bias"] = list(last["bias"]) + [float(insertion_bias)]
     last["shape"] = [2, hidden]
     out = {**copy.deepcopy(d), "obs_size": cols + extra, "action_size": 2,
-           "obs_layout": "guidewire-nav/obs/7" if since_progress else "guidewire-nav/obs/5",
+           "obs_layout": "guidewire-nav/obs/5",
            "action_layout": "guidewire-nav/act/2", "layers": layers,
            "output": {"squash": "tanh", "low": list(d["output"]["low"]) + [-1.0],
                       "high": list(d["output"]["high"]) + [1.0]}}
@@ -223,11 +221,11 @@ def main(argv=None) -> None:
     p.add_argument("out", help="output actor .json")
     p.add_argument("--vecnormalize", help="VecNormalize statistics .pkl (not stored in the zip)")
     p.add_argument("--obs-layout", default="guidewire-nav/obs/2",
-                   help="observation layout the model was trained on: guidewire-nav/obs/2 (the server's default "
-                        "omega plane), guidewire-nav/obs/1 (--omega-plane correct_branch, the paper's) or "
-                        "guidewire-nav/obs/3 (--omega-side), guidewire-nav/obs/5 (--push-pull) or guidewire-nav/obs/7 "
-                        "(--push-pull --since-progress; the action "
-                        "layout follows the action size)")
+                   help="observation layout the model was trained on, the server's spec obs_layout (a gw-train "
+                        "run's actor.json records it): guidewire-nav/obs/3 (the default task), guidewire-nav/obs/1 "
+                        "(training/tasks/paper.json, the paper's omega), guidewire-nav/obs/2, /obs/4, /obs/6, "
+                        "guidewire-nav/obs/5 (training/tasks/push_pull.json) or guidewire-nav/obs/7 "
+                        "(docs/task_settings.md); default %(default)s. The action layout follows the action size")
     a = p.parse_args(argv)
     model = SAC.load(a.model, device="cpu")
     export_sac_actor(model, a.out, obs_layout=a.obs_layout, vecnormalize=a.vecnormalize)

@@ -45,8 +45,10 @@ def legacy_observation(settings: dict) -> dict:
     observation = {"omega_plane": settings.get("omega_plane", "approach"),
                    "omega_side": bool(settings.get("omega_side", False)),
                    "junctions": settings.get("junctions", "separate"),
-                   "push_pull": bool(settings.get("push_pull", False)),
-                   "since_progress": bool(settings.get("since_progress", False))}
+                   "push_pull": bool(settings.get("push_pull", False))}
+    if settings.get("since_progress") or (observation["omega_plane"] == "approach" and not observation["omega_side"]):
+        raise SystemExit("the run trained a retired observation layout (obs/2 or obs/7, docs/policy_history.md "
+                         "\"Retired settings\"): score it with the commit named there")
     task = {"observation": observation}
     if observation["push_pull"]:
         task["action"] = "guidewire-nav/act/2"

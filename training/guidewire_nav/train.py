@@ -477,7 +477,7 @@ def main(argv=None) -> int:
         spec = eval_env.unwrapped.spec_reply  # the task's layouts, as the server says them
         if spec.get("action_layout") == "guidewire-nav/act/2" and start_actor.get("action_size") == 1:
             # a rotation actor starts the push/pull one
-            start_actor = widen_to_push_pull(start_actor, since_progress=spec["obs_layout"] == "guidewire-nav/obs/7")
+            start_actor = widen_to_push_pull(start_actor)
         load_actor_json(model, start_actor, log_std=s.init_log_std)
     model.set_logger(configure(str(out / "logs"), ["csv", "tensorboard"]))
 

@@ -117,8 +117,8 @@ struct TaskConfig {
   // done). The actor is handed the wire back at the end of the pull-back. Off: every act/2 run before it, bit for
   // bit.
   bool recovery_assist = false;
-  // The act/2 reward (reward.hpp, push_pull_reward): the paper's terms earned in proportion to the forward
-  // insertion, less this per env step while the tip is in a wrong child.
+  // The act/2 reward (reward.hpp, push_pull_reward): the progress term earned by new depth and the aim by its
+  // change, less this per env step while the tip is in a wrong child.
   double reward_wrong_branch = 1.0;
   // ... and less this every env step (a cost of time; 0.25 = the shipped push/pull actor's, 0 = the first push/pull
   // run's reward). Without it stopping is free (reward.hpp says why that matters).

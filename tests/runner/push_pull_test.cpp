@@ -43,7 +43,10 @@ TEST_CASE("push/pull: insertion +1 is the paper's episode bit for bit", "[runner
   for (const bool at_wrong : {false, true}) {
     gw::EpisodeState a = gw::reset_episode(paper, 0, 1, 7), b = gw::reset_episode(push_pull, 0, 1, 7);
     int steps = 0;
+    const gw::RewardShape shape = push_pull.config.reward;
+    auto orientation = [&shape](double w) { return 2.0 / (1.0 + std::exp(shape.omega_slope * (w - shape.omega_centre))) - 1.0; };
     for (;;) {
+      const double omega_before = b.obs[gw::obs_index::kOmega];
       const double rotation = gwtest::aim_rotation(a.obs, at_wrong);
       const gw::StepOutcome oa = gw::step_episode(paper, a, rotation);
       const gw::StepOutcome ob = gw::step_episode(push_pull, b, gw::Action{rotation, 1.0});
@@ -53,7 +56,10 @@ TEST_CASE("push/pull: insertion +1 is the paper's episode bit for bit", "[runner
       REQUIRE(ob.obs[gw::obs_index::kInsertion] == 1.0);
       REQUIRE(oa.terminated == ob.terminated);
       REQUIRE(oa.truncated == ob.truncated);
-      if (!oa.info.wrong_branch) REQUIRE(oa.reward == ob.reward);  // reward.hpp: Eq. 3 at insertion 1
+      // reward.hpp: at insertion 1 outside a wrong child, Eq. 3 with the aim paid by its change, less the time cost
+      if (!oa.info.wrong_branch)
+        REQUIRE(ob.reward ==
+                Approx(oa.reward - orientation(omega_before) - push_pull.config.reward_time_per_step).margin(1e-9));
       if (oa.terminated || oa.truncated) {
         CHECK(oa.info.success == !at_wrong);
         CHECK(ob.info.wrong_branch == at_wrong);

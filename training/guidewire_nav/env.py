@@ -14,9 +14,8 @@ spec's ``task`` holds all of it). Observation (the spec's ``obs_layout``, engine
 lambda_{t-n dt}, a_t, omega (in the approach plane), s, omega_side (omega's sine). The paper's "guidewire-nav/obs/1"
 (11 values, omega in the correct branch's normal plane): ``server_args=["--task", "training/tasks/paper.json"]``
 (with the paper's reward sigmoid) or ``server_args=["--omega-plane", "correct_branch"]``; "guidewire-nav/obs/5"
-(``server_args=["--push-pull"]``) adds the last insertion and a wrong-branch flag, "guidewire-nav/obs/7"
-(``server_args=["--task", '{"observation": "guidewire-nav/obs/7"}', "--push-pull"]``) the time since the tip last
-progressed. The exported actor records which one it was trained on.  Action (the spec's ``action_layout``): one
+(``server_args=["--push-pull"]``, 14 values) adds the last insertion and a wrong-branch flag. The exported actor
+records which one it was trained on.  Action (the spec's ``action_layout``): one
 float in [-1, 1], the proximal rotation rate as a fraction of the maximum ("guidewire-nav/act/1", paper Eq. 3's
 reward with the task's sigmoid); with ``--push-pull`` two, rotation and insertion speed ("guidewire-nav/act/2",
 engine/task/reward.hpp).
@@ -47,10 +46,10 @@ import guidewire_nav
 
 PROTOCOL = "guidewire-nav/protocol/1"
 # The observation layout is the server's (spec: "obs_layout" and observation_space.names; C++
-# ObservationLayout, engine/task/observation_layout.hpp): obs/1 and obs/2, 11 values, omega's plane differs; obs/3:
-# obs/2 and omega's sine (12 values); obs/4 and obs/6: obs/3 with combined or k-way junctions; obs/5: obs/3 with the
-# push/pull entries (14 values); obs/7: obs/5 and since_progress (15 values). The client reads what it needs
-# (omega's index) from the names and keeps no copy of the layouts.
+# ObservationLayout, engine/task/observation_layout.hpp): obs/1, 11 values, the paper's omega; obs/3: omega in the
+# approach plane and its sine (12 values); obs/4 and obs/6: obs/3 with combined or k-way junctions; obs/5: obs/3 with
+# the push/pull entries (14 values). The client reads what it needs (omega's index) from the names and keeps no copy
+# of the layouts.
 
 
 class ServerError(RuntimeError):

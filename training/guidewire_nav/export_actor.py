@@ -220,12 +220,12 @@ def main(argv=None) -> None:
     p.add_argument("model", help="SB3 SAC model .zip")
     p.add_argument("out", help="output actor .json")
     p.add_argument("--vecnormalize", help="VecNormalize statistics .pkl (not stored in the zip)")
-    p.add_argument("--obs-layout", default="guidewire-nav/obs/2",
+    p.add_argument("--obs-layout", default="guidewire-nav/obs/3",
                    help="observation layout the model was trained on, the server's spec obs_layout (a gw-train "
                         "run's actor.json records it): guidewire-nav/obs/3 (the default task), guidewire-nav/obs/1 "
-                        "(training/tasks/paper.json, the paper's omega), guidewire-nav/obs/2, /obs/4, /obs/6, "
-                        "guidewire-nav/obs/5 (training/tasks/push_pull.json) or guidewire-nav/obs/7 "
-                        "(docs/task_settings.md); default %(default)s. The action layout follows the action size")
+                        "(training/tasks/paper.json, the paper's omega), /obs/4, /obs/6 (junction readings) or "
+                        "guidewire-nav/obs/5 (training/tasks/push_pull.json; docs/task_settings.md); default "
+                        "%(default)s. The action layout follows the action size")
     a = p.parse_args(argv)
     model = SAC.load(a.model, device="cpu")
     export_sac_actor(model, a.out, obs_layout=a.obs_layout, vecnormalize=a.vecnormalize)

@@ -10,16 +10,16 @@ namespace {
 
 // TaskConfig::force_limit_N: what a clinician does on feeling resistance. While the last physics step pressed the
 // wall harder than the limit at one node, the wire is pulled back at the push speed and not turned (held at the start
-// insertion); a pull-back already as fast goes on. The forward push given up is counted in s.withheld_mm.
+// insertion); a pull-back already as fast goes on. The forward push given up is counted in s.force.withheld_mm.
 Control limit_force(const TaskConfig& c, EpisodeState& s, const Control& control, int& held) {
   Control applied = control;
   const double limit_mN = 1e3 * c.force_limit_N;  // 0: off
-  if (limit_mN > 0 && s.last_peak_node_mN > limit_mN) {
+  if (limit_mN > 0 && s.force.last_peak_node_mN > limit_mN) {
     const double back = s.wire.inserted_length_mm <= c.initial_insertion_mm ? 0.0 : -c.push_mm_per_s;
     if (control.push_mm_per_s > back) {
       applied.push_mm_per_s = back;
       applied.rotate_rad_per_s = 0.0;
-      s.withheld_mm += (std::max(control.push_mm_per_s, 0.0) - back) * c.dt_s;
+      s.force.withheld_mm += (std::max(control.push_mm_per_s, 0.0) - back) * c.dt_s;
       ++held;
     }
   }
@@ -43,7 +43,7 @@ PhysicsSummary advance_physics(const NavigationTask& task, EpisodeState& s, cons
       break;
     }
     const WallForce f = wall_force(task.wire, s.wire);
-    s.last_peak_node_mN = f.peak_node_mN;
+    s.force.last_peak_node_mN = f.peak_node_mN;
     out.peak.peak_node_mN = std::max(out.peak.peak_node_mN, f.peak_node_mN);
     out.peak.total_mN = std::max(out.peak.total_mN, f.total_mN);
     out.peak.tip_mN = std::max(out.peak.tip_mN, f.tip_mN);

@@ -8,9 +8,9 @@ namespace gw {
 StepCommand command_step(const NavigationTask& task, const EpisodeState& s, const Action& action) {
   const TaskConfig& c = task.config;
   StepCommand cmd;
-  cmd.retracting = s.retracting;
+  cmd.retracting = s.procedure.retracting;
   cmd.omega_before = s.obs[obs_index::kOmega];
-  cmd.rotation = s.in_control && !s.retracting ? std::clamp(action.rotation, -1.0, 1.0) : 0.0;
+  cmd.rotation = s.in_control && !s.procedure.retracting ? std::clamp(action.rotation, -1.0, 1.0) : 0.0;
   // act/2 in control: the actor's insertion, not pulling the wire out past its start insertion.
   const bool push_pull = c.action == ActionLayout::kRotationInsertion;
   cmd.insertion = push_pull && s.in_control ? std::clamp(action.insertion, -1.0, 1.0) : 1.0;

@@ -6,20 +6,20 @@
 namespace gw {
 
 void track_progress(const TaskConfig& c, EpisodeState& s) {
-  if (s.progress_mm > s.best_progress_mm + c.stuck_progress_mm) {
-    s.best_progress_mm = s.progress_mm;
-    s.best_progress_step = s.steps;
-    s.inserted_at_best_mm = s.wire.inserted_length_mm + s.withheld_mm;
+  if (s.progress_mm > s.stall.best_progress_mm + c.stuck_progress_mm) {
+    s.stall.best_progress_mm = s.progress_mm;
+    s.stall.best_progress_step = s.steps;
+    s.stall.inserted_at_best_mm = s.wire.inserted_length_mm + s.force.withheld_mm;
   }
 }
 
 bool stalled(const TaskConfig& c, const EpisodeState& s) {
-  if (c.action != ActionLayout::kRotationInsertion) return s.steps - s.best_progress_step >= c.stuck_steps;
+  if (c.action != ActionLayout::kRotationInsertion) return s.steps - s.stall.best_progress_step >= c.stuck_steps;
   // act/2: stuck_steps pushes at the full speed (the strict rule's 24 mm under the constant push) since the tip last
   // gained stuck_progress_mm. An actor that stops to aim does not stall; one that keeps pushing a buckling wire, or
   // pushes on along a wrong child, does.
   const double stall_mm = c.stuck_steps * env_dt(c) * c.push_mm_per_s;
-  return s.wire.inserted_length_mm + s.withheld_mm - s.inserted_at_best_mm >= stall_mm;
+  return s.wire.inserted_length_mm + s.force.withheld_mm - s.stall.inserted_at_best_mm >= stall_mm;
 }
 
 void fill_physics_info(StepInfo& info, const PhysicsSummary& physics, bool retracting) {
@@ -55,13 +55,13 @@ void check_strict_end(const NavigationTask& task, EpisodeState& s, bool stall, S
   const TaskConfig& c = task.config;
   out.terminated = out.info.success || out.info.wrong_branch;
   if (!out.terminated) {
-    out.info.step_limit = s.steps >= (s.strict_over ? s.procedure_max_steps : s.max_steps);
+    out.info.step_limit = s.steps >= (s.procedure.strict_over ? s.procedure.max_steps : s.max_steps);
     out.info.stuck = stall;
     out.info.wire_exhausted = s.wire.inserted_length_mm >= task.wire.params.length_mm - c.wire_reserve_mm;
     out.truncated = out.info.step_limit || out.info.stuck || out.info.wire_exhausted;
   }
-  out.info.strict_end = !s.strict_over && (out.terminated || out.truncated);
-  s.strict_over = s.strict_over || out.info.strict_end;
+  out.info.strict_end = !s.procedure.strict_over && (out.terminated || out.truncated);
+  s.procedure.strict_over = s.procedure.strict_over || out.info.strict_end;
 }
 
 }  // namespace gw

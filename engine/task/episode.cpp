@@ -28,9 +28,9 @@ StepOutcome diverged_step(const NavigationTask& task, EpisodeState& s, const Phy
   out.info.problem = physics.problem;
   out.info.time_limit = physics.time_limit;
   fill_physics_info(out.info, physics, retracting);
-  out.info.strict_end = !s.strict_over;
-  s.strict_over = true;
-  out.info.recovery_attempts = s.recovery_attempts_used;
+  out.info.strict_end = !s.procedure.strict_over;
+  s.procedure.strict_over = true;
+  out.info.recovery_attempts = s.procedure.attempts_used;
   out.obs = s.obs;
   out.truncated = true;
   return out;
@@ -66,7 +66,7 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, const Acti
   const bool stall = stalled(c, s);
   check_strict_end(task, s, stall, out);
   continue_procedure(task, s, lost, entered, stall, out);
-  out.info.recovery_attempts = s.recovery_attempts_used;
+  out.info.recovery_attempts = s.procedure.attempts_used;
   s.done = out.terminated || out.truncated;
   out.obs = s.obs;
   return out;

@@ -16,6 +16,45 @@
 
 namespace gw {
 
+// The stall tests' clock: when the tip last gained stuck_progress_mm along its course, and the insertion then.
+struct StallClock {
+  double best_progress_mm = 0.0;
+  int best_progress_step = 0;
+  double inserted_at_best_mm = 0.0;  // the commanded insertion (inserted + withheld) then (act/2's stall)
+};
+
+// act/2's reward pays only for going deeper than ever: the insertion commands summed (full-speed env steps pushed,
+// net) and their largest value so far.
+struct PushPullDepth {
+  double pushed_steps = 0.0;
+  double deepest_pushed_steps = 0.0;
+};
+
+// Force limit (TaskConfig::force_limit_N > 0; else withheld_mm stays 0): the last physics step's largest
+// single-node wall force, and how much further in the commands would have put the wire than the limit let it
+// (mm; the commanded forward push and the backing off), which the stall tests count as pushed.
+struct ForceLimitState {
+  double last_peak_node_mN = 0.0;
+  double withheld_mm = 0.0;
+};
+
+// The procedure above the strict episode (procedure.hpp; TaskConfig::recovery_attempts > 0, else these stay as
+// they are here but strict_over).
+struct ProcedureState {
+  bool strict_over = false;        // the paper's strict episode has ended (StepInfo::strict_end was reported)
+  bool retracting = false;         // pulling the wire back: no action is applied (in_control is false)
+  int attempts_used = 0;           // pull-backs started (act/2: entries into a wrong child gone on from)
+  double retract_to_mm = 0.0;      // pull back until progress_mm is at most this
+  int retract_steps_left = 0;      // bound on one pull-back (a wire caught on the wall stops pulling)
+  int turn_steps_left = 0;         // env steps of the recovery turn still to apply
+  int max_steps = 0;               // step limit with recovery: max_steps + recovery_time_s; else max_steps
+  int wrong_branch_steps = 0;      // act/2 with recovery_assist: env steps the tip has stayed in a wrong child
+  // act/2 with recovery_assist, the standstill test: the commanded insertion (inserted + withheld) when the tip
+  // last progressed or the wire last moved stuck_progress_mm, and that env step.
+  double standstill_at_mm = 0.0;
+  int standstill_since_step = 0;
+};
+
 struct EpisodeState {
   int anatomy = -1;
   int target_id = 0;
@@ -30,34 +69,15 @@ struct EpisodeState {
   double lambda_mm = 0.0;          // tip-to-goal distance along the centerline (to course->lambda_arc)
   double progress_mm = 0.0;        // arc length of the tip's projection on the course
   double course_distance_mm = 0.0; // distance from the tip to the course centerline
-  double best_progress_mm = 0.0;   // for the stuck test
-  int best_progress_step = 0;
   Eigen::Vector3d tip = Eigen::Vector3d::Zero();
   bool in_control = true;          // whether the next action is applied
   int steps = 0;
   int max_steps = 0;
   bool done = false;
-  // Recovery (TaskConfig::recovery_attempts > 0; with 0 these stay as they are here).
-  bool strict_over = false;        // the paper's strict episode has ended (StepInfo::strict_end was reported)
-  bool retracting = false;         // pulling the wire back: no action is applied (in_control is false)
-  int recovery_attempts_used = 0;  // pull-backs started
-  double retract_to_mm = 0.0;      // pull back until progress_mm is at most this
-  int retract_steps_left = 0;      // bound on one pull-back (a wire caught on the wall stops pulling)
-  int turn_steps_left = 0;         // env steps of the recovery turn still to apply
-  int procedure_max_steps = 0;     // step limit with recovery: max_steps + recovery_time_s; else max_steps
-  double inserted_at_best_mm = 0.0;  // the wire's insertion when best_progress_mm was last raised (act/2 stall)
-  double pushed_steps = 0.0;       // act/2: the insertion commands summed (full-speed env steps pushed, net)
-  double deepest_pushed_steps = 0.0;  // their largest value so far: the reward pays only for going deeper
-  int wrong_branch_steps = 0;      // act/2 with recovery_assist: env steps the tip has stayed in a wrong child
-  // act/2 with recovery_assist, the standstill test: the commanded insertion (inserted + withheld) when the tip
-  // last progressed or the wire last moved stuck_progress_mm, and that env step.
-  double standstill_at_mm = 0.0;
-  int standstill_since_step = 0;
-  // Force limit (TaskConfig::force_limit_N > 0; else withheld_mm stays 0): the last physics step's largest
-  // single-node wall force, and how much further in the commands would have put the wire than the limit let it
-  // (mm; the commanded forward push and the backing off), which the stall tests count as pushed.
-  double last_peak_node_mN = 0.0;
-  double withheld_mm = 0.0;
+  StallClock stall;
+  PushPullDepth depth;
+  ForceLimitState force;
+  ProcedureState procedure;
   TipSamples samples;              // scratch, kept here so stepping does not allocate
   // Moving wall (issue 36): the course in the wall's shape at the last observation's time (wire.time),
   // which the observation, the control spheres and the end tests read (current_course). Arcs (progress_mm,

@@ -36,16 +36,16 @@ int recovery_turn_steps(const TaskConfig& c, int attempt) {
 // already counted, act/2's entry into the wrong child it is pulled out of).
 void start_retraction(const NavigationTask& task, EpisodeState& s, int lost, bool new_attempt = true) {
   const TaskConfig& c = task.config;
-  if (new_attempt) ++s.recovery_attempts_used;
-  s.retracting = true;
+  if (new_attempt) ++s.procedure.attempts_used;
+  s.procedure.retracting = true;
   s.in_control = false;
-  s.retract_to_mm = retract_target(c, current_course(s), s.progress_mm, lost);
+  s.procedure.retract_to_mm = retract_target(c, current_course(s), s.progress_mm, lost);
   const double pull_per_step = env_dt(c) * c.recovery_pull_mm_per_s;
   // Twice the steps the distance needs (a wire that slides back slower than it is pulled), and 1 s more.
-  s.retract_steps_left =
-      static_cast<int>(std::ceil(2.0 * std::max(0.0, s.progress_mm - s.retract_to_mm) / pull_per_step)) +
+  s.procedure.retract_steps_left =
+      static_cast<int>(std::ceil(2.0 * std::max(0.0, s.progress_mm - s.procedure.retract_to_mm) / pull_per_step)) +
       static_cast<int>(std::ceil(1.0 / env_dt(c)));
-  s.turn_steps_left = c.recovery_turn_rad > 0 ? recovery_turn_steps(c, s.recovery_attempts_used) : 0;
+  s.procedure.turn_steps_left = c.recovery_turn_rad > 0 ? recovery_turn_steps(c, s.procedure.attempts_used) : 0;
 }
 
 // The tip is back upstream. The goal is the one the tip's progress is before (a tip in a wrong branch may have
@@ -54,7 +54,7 @@ void start_retraction(const NavigationTask& task, EpisodeState& s, int lost, boo
 void end_retraction(const NavigationTask& task, EpisodeState& s) {
   const TaskConfig& c = task.config;
   const Course& course = current_course(s);
-  s.retracting = false;
+  s.procedure.retracting = false;
   int goal = 0;
   const int last_goal = static_cast<int>(course.goal_arc.size()) - 1;
   while (goal < last_goal && s.progress_mm >= course.goal_arc[static_cast<size_t>(goal)]) ++goal;
@@ -63,20 +63,20 @@ void end_retraction(const NavigationTask& task, EpisodeState& s) {
   s.lambda0_mm = std::max(s.lambda_mm, 1e-3);
   s.obs[obs_index::kLambda] = s.obs[obs_index::kLambdaPrev] = lambda_ratio(c, s);
   s.in_control = course.policy_always || near_a_bifurcation(course, s.tip);
-  s.best_progress_mm = s.progress_mm;
-  s.best_progress_step = s.steps;
-  s.inserted_at_best_mm = s.wire.inserted_length_mm + s.withheld_mm;  // act/2's stall test starts again too
-  s.standstill_at_mm = s.inserted_at_best_mm;                          // and the assist's standstill test
-  s.standstill_since_step = s.steps;
+  s.stall.best_progress_mm = s.progress_mm;
+  s.stall.best_progress_step = s.steps;
+  s.stall.inserted_at_best_mm = s.wire.inserted_length_mm + s.force.withheld_mm;  // act/2's stall test starts again too
+  s.procedure.standstill_at_mm = s.stall.inserted_at_best_mm;                          // and the assist's standstill test
+  s.procedure.standstill_since_step = s.steps;
 }
 
 // act/1: the wrapper's pull-back after a wrong branch, a stall or (once the strict episode is over) a folded tip,
 // while attempts and time are left; a strict step limit only lets the procedure go on.
 void continue_rotation_procedure(const NavigationTask& task, EpisodeState& s, int lost, StepOutcome& out) {
   const TaskConfig& c = task.config;
-  const bool folded = s.strict_over && s.obs[obs_index::kTheta] < kFoldedTheta;
-  const bool time_left = s.steps < s.procedure_max_steps;
-  if ((out.info.wrong_branch || out.info.stuck || folded) && s.recovery_attempts_used < c.recovery_attempts &&
+  const bool folded = s.procedure.strict_over && s.obs[obs_index::kTheta] < kFoldedTheta;
+  const bool time_left = s.steps < s.procedure.max_steps;
+  if ((out.info.wrong_branch || out.info.stuck || folded) && s.procedure.attempts_used < c.recovery_attempts &&
       time_left) {
     start_retraction(task, s, lost);
     out.info.in_control = false;
@@ -95,11 +95,11 @@ void continue_push_pull_procedure(const NavigationTask& task, EpisodeState& s, i
                                   StepOutcome& out) {
   const TaskConfig& c = task.config;
   const bool in_wrong_branch = lost >= 0;
-  const bool time_left = s.steps < s.procedure_max_steps;
+  const bool time_left = s.steps < s.procedure.max_steps;
   bool failed = !time_left;
   if (entered) {
-    if (s.recovery_attempts_used < c.recovery_attempts)
-      ++s.recovery_attempts_used;
+    if (s.procedure.attempts_used < c.recovery_attempts)
+      ++s.procedure.attempts_used;
     else
       failed = true;
   }
@@ -109,22 +109,22 @@ void continue_push_pull_procedure(const NavigationTask& task, EpisodeState& s, i
   out.terminated = entered && failed;
   out.truncated = !out.terminated && (failed || stall);
   if (c.recovery_assist && !failed) {
-    s.wrong_branch_steps = in_wrong_branch ? s.wrong_branch_steps + 1 : 0;
-    const bool lingering = in_wrong_branch && s.wrong_branch_steps >= c.stuck_steps;
-    const bool retry = stall && (in_wrong_branch || s.recovery_attempts_used < c.recovery_attempts);
+    s.procedure.wrong_branch_steps = in_wrong_branch ? s.procedure.wrong_branch_steps + 1 : 0;
+    const bool lingering = in_wrong_branch && s.procedure.wrong_branch_steps >= c.stuck_steps;
+    const bool retry = stall && (in_wrong_branch || s.procedure.attempts_used < c.recovery_attempts);
     // A standstill: since the tip last progressed, the commands have kept the wire within stuck_progress_mm of
     // where it was for stuck_steps env steps (an actor at a fixed point of its own; pushing is the stall above).
-    const double commanded_mm = s.wire.inserted_length_mm + s.withheld_mm;
-    if (s.best_progress_step > s.standstill_since_step ||
-        std::abs(commanded_mm - s.standstill_at_mm) >= c.stuck_progress_mm) {
-      s.standstill_at_mm = commanded_mm;
-      s.standstill_since_step = s.steps;
+    const double commanded_mm = s.wire.inserted_length_mm + s.force.withheld_mm;
+    if (s.stall.best_progress_step > s.procedure.standstill_since_step ||
+        std::abs(commanded_mm - s.procedure.standstill_at_mm) >= c.stuck_progress_mm) {
+      s.procedure.standstill_at_mm = commanded_mm;
+      s.procedure.standstill_since_step = s.steps;
     }
-    const bool standstill = s.strict_over && !in_wrong_branch && s.steps - s.standstill_since_step >= c.stuck_steps &&
-                            s.recovery_attempts_used < c.recovery_attempts;
+    const bool standstill = s.procedure.strict_over && !in_wrong_branch && s.steps - s.procedure.standstill_since_step >= c.stuck_steps &&
+                            s.procedure.attempts_used < c.recovery_attempts;
     if (lingering || retry || standstill) {
       start_retraction(task, s, lost, !in_wrong_branch);
-      s.wrong_branch_steps = 0;
+      s.procedure.wrong_branch_steps = 0;
       out.info.in_control = false;
       out.truncated = false;
     }
@@ -140,10 +140,10 @@ void continue_push_pull_procedure(const NavigationTask& task, EpisodeState& s, i
 void procedure_command(const NavigationTask& task, EpisodeState& s, StepCommand& command) {
   const TaskConfig& c = task.config;
   command.control.push_mm_per_s = -c.recovery_pull_mm_per_s;
-  if (s.turn_steps_left > 0) {  // pull-back k turns by k * recovery_turn_rad at the full rotation rate
-    const double turn = s.recovery_attempts_used * c.recovery_turn_rad;
-    command.control.rotate_rad_per_s += turn / (recovery_turn_steps(c, s.recovery_attempts_used) * env_dt(c));
-    --s.turn_steps_left;
+  if (s.procedure.turn_steps_left > 0) {  // pull-back k turns by k * recovery_turn_rad at the full rotation rate
+    const double turn = s.procedure.attempts_used * c.recovery_turn_rad;
+    command.control.rotate_rad_per_s += turn / (recovery_turn_steps(c, s.procedure.attempts_used) * env_dt(c));
+    --s.procedure.turn_steps_left;
   }
 }
 
@@ -161,9 +161,9 @@ StepOutcome retraction_step(const NavigationTask& task, EpisodeState& s, const S
   } else {
     out.reward = step_reward(task, s, command, false) - force_cost(c, physics);  // before the goal is reset below
   }
-  --s.retract_steps_left;
+  --s.procedure.retract_steps_left;
   const double pull_per_step = env_dt(c) * c.recovery_pull_mm_per_s;
-  if (s.progress_mm <= s.retract_to_mm || s.retract_steps_left <= 0 ||
+  if (s.progress_mm <= s.procedure.retract_to_mm || s.procedure.retract_steps_left <= 0 ||
       s.wire.inserted_length_mm <= c.initial_insertion_mm + pull_per_step)
     end_retraction(task, s);
   else
@@ -171,8 +171,8 @@ StepOutcome retraction_step(const NavigationTask& task, EpisodeState& s, const S
   out.obs = s.obs;
   out.info = episode_info(task, s);
   fill_physics_info(out.info, physics, true);
-  out.info.recovery_attempts = s.recovery_attempts_used;
-  out.info.step_limit = s.steps >= s.procedure_max_steps;
+  out.info.recovery_attempts = s.procedure.attempts_used;
+  out.info.step_limit = s.steps >= s.procedure.max_steps;
   out.truncated = out.info.step_limit;
   s.done = out.truncated;
   return out;

@@ -16,9 +16,9 @@ double step_reward(const NavigationTask& task, EpisodeState& s, const StepComman
     return navigation_reward(s.obs[obs_index::kOmega], s.obs[obs_index::kLambda], command.rotation, c.reward);
   // New depth: how far this step's command took the wire past its deepest so far, in full-speed steps (the
   // commands, not the measured insertion, so that the constant push gives exactly 1).
-  s.pushed_steps += command.insertion;
-  const double new_depth = std::clamp(s.pushed_steps - s.deepest_pushed_steps, 0.0, 1.0);
-  s.deepest_pushed_steps = std::max(s.deepest_pushed_steps, s.pushed_steps);
+  s.depth.pushed_steps += command.insertion;
+  const double new_depth = std::clamp(s.depth.pushed_steps - s.depth.deepest_pushed_steps, 0.0, 1.0);
+  s.depth.deepest_pushed_steps = std::max(s.depth.deepest_pushed_steps, s.depth.pushed_steps);
   return push_pull_reward(s.obs[obs_index::kOmega], command.omega_before, s.obs[obs_index::kLambda], command.rotation,
                           new_depth, in_wrong_branch, c.reward_wrong_branch, c.reward_time_per_step, c.reward);
 }

@@ -157,9 +157,9 @@ TEST_CASE("push/pull: a stall is wire pushed in without progress", "[runner][pus
   REQUIRE(s.done);
   REQUIRE(out.info.stuck);
   CHECK(out.truncated);
-  CHECK(s.wire.inserted_length_mm - s.inserted_at_best_mm >= stall_mm);
-  CHECK(s.wire.inserted_length_mm - s.inserted_at_best_mm < stall_mm + 0.2);
-  CHECK(s.steps - s.best_progress_step >= 3 * task.config.stuck_steps - 1);
+  CHECK(s.wire.inserted_length_mm - s.stall.inserted_at_best_mm >= stall_mm);
+  CHECK(s.wire.inserted_length_mm - s.stall.inserted_at_best_mm < stall_mm + 0.2);
+  CHECK(s.steps - s.stall.best_progress_step >= 3 * task.config.stuck_steps - 1);
 }
 
 TEST_CASE("push/pull with recovery: the actor pulls out of a wrong child itself, the (K+1)-th entry ends it",

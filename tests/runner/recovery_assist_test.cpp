@@ -68,32 +68,32 @@ TEST_CASE("recovery assist: a tip left in a wrong child is pulled out after stuc
     REQUIRE(out.info.recovery_attempts == 1);
     // The actor holds the wire still in the wrong child: no stall (nothing pushed), so only the assist acts.
     int held = 1;  // the entry step counts
-    while (!s.retracting && held < 3 * task.config.stuck_steps) {
+    while (!s.procedure.retracting && held < 3 * task.config.stuck_steps) {
       out = gw::step_episode(task, s, gw::Action{0.0, 0.0});
       REQUIRE_FALSE(s.done);
       ++held;
     }
     if (!assist) {
-      CHECK_FALSE(s.retracting);
+      CHECK_FALSE(s.procedure.retracting);
       continue;
     }
-    REQUIRE(s.retracting);
+    REQUIRE(s.procedure.retracting);
     CHECK(held == task.config.stuck_steps);
     CHECK_FALSE(out.info.in_control);
-    CHECK(s.recovery_attempts_used == 1);  // the entry's attempt: the pull-back uses none
+    CHECK(s.procedure.attempts_used == 1);  // the entry's attempt: the pull-back uses none
     // The wrapper pulls it out: the flag clears while the wire comes back, whatever the actor asks.
     int pulled = 0;
-    while (s.retracting && pulled < 500) {
+    while (s.procedure.retracting && pulled < 500) {
       const double inserted = s.wire.inserted_length_mm;
       out = gw::step_episode(task, s, gw::Action{1.0, 1.0});
       CHECK(out.info.retracting);
       CHECK(s.wire.inserted_length_mm < inserted);
       ++pulled;
     }
-    REQUIRE_FALSE(s.retracting);
+    REQUIRE_FALSE(s.procedure.retracting);
     REQUIRE_FALSE(s.done);
     CHECK(s.obs[gw::obs_index::kWrongBranch] == 0.0);
-    CHECK(s.progress_mm <= s.retract_to_mm + 0.5);
+    CHECK(s.progress_mm <= s.procedure.retract_to_mm + 0.5);
     CHECK(out.info.recovery_attempts == 1);
   }
 }
@@ -112,16 +112,16 @@ TEST_CASE("recovery assist: a stall starts a pull-back with one attempt instead 
   REQUIRE(oa.info.stuck);
   REQUIRE(oa.info.strict_end);
   CHECK(oa.truncated);
-  CHECK(a.recovery_attempts_used == 0);
+  CHECK(a.procedure.attempts_used == 0);
   // Assisted: the strict end is the same stall, the procedure goes on with a pull-back.
   CHECK(ob.info.strict_end);
   CHECK(ob.info.stuck);
   CHECK_FALSE(ob.truncated);
   CHECK_FALSE(ob.terminated);
   CHECK_FALSE(b.done);
-  CHECK(b.retracting);
-  CHECK(b.recovery_attempts_used == 1);
-  while (b.retracting && !b.done) ob = gw::step_episode(on, b, gw::Action{0.3, 1.0});
+  CHECK(b.procedure.retracting);
+  CHECK(b.procedure.attempts_used == 1);
+  while (b.procedure.retracting && !b.done) ob = gw::step_episode(on, b, gw::Action{0.3, 1.0});
   REQUIRE_FALSE(b.done);
   // The stall test starts again from the pulled-back wire: pushing on, no stall before stuck_steps full pushes.
   const int from = b.steps;
@@ -130,7 +130,7 @@ TEST_CASE("recovery assist: a stall starts a pull-back with one attempt instead 
   // With its one attempt used, a second stall ends the procedure (or the tip got past and the episode ended there).
   if (ob.info.stuck) {
     CHECK(ob.truncated);
-    CHECK(b.recovery_attempts_used == 1);
+    CHECK(b.procedure.attempts_used == 1);
   }
 }
 
@@ -152,35 +152,35 @@ TEST_CASE("recovery assist: a standstill after the strict end starts a pull-back
   CHECK(ob.info.step_limit);  // the strict verdict, for the strict columns
   CHECK_FALSE(ob.info.stuck);
   // Without the assist the actor stays where it is until the procedure's time runs out.
-  CHECK_FALSE(a.retracting);
+  CHECK_FALSE(a.procedure.retracting);
   while (!a.done) {
     oa = gw::step_episode(off, a, act(a));
-    CHECK_FALSE(a.retracting);
+    CHECK_FALSE(a.procedure.retracting);
   }
   CHECK(oa.info.step_limit);
-  CHECK(a.recovery_attempts_used == 0);
+  CHECK(a.procedure.attempts_used == 0);
   // Assisted: the standstill (since step 40, longer than stuck_steps) starts a pull-back at the strict end.
   CHECK_FALSE(ob.truncated);
-  REQUIRE(b.retracting);
-  CHECK(b.recovery_attempts_used == 1);
+  REQUIRE(b.procedure.retracting);
+  CHECK(b.procedure.attempts_used == 1);
   const double before = b.wire.inserted_length_mm;
-  while (b.retracting && !b.done) ob = gw::step_episode(on, b, act(b));
+  while (b.procedure.retracting && !b.done) ob = gw::step_episode(on, b, act(b));
   REQUIRE_FALSE(b.done);
   CHECK(b.wire.inserted_length_mm < before - 5.0);
   // The clock starts again at the end of the pull-back: standing still again, the second (last) attempt starts
   // exactly stuck_steps env steps later, and with none left the actor is then left standing until time runs out.
   const int from = b.steps;
-  while (!b.retracting && !b.done) ob = gw::step_episode(on, b, act(b));
-  REQUIRE(b.retracting);
+  while (!b.procedure.retracting && !b.done) ob = gw::step_episode(on, b, act(b));
+  REQUIRE(b.procedure.retracting);
   CHECK(b.steps - from == on.config.stuck_steps);
-  CHECK(b.recovery_attempts_used == 2);
-  while (b.retracting && !b.done) ob = gw::step_episode(on, b, act(b));
+  CHECK(b.procedure.attempts_used == 2);
+  while (b.procedure.retracting && !b.done) ob = gw::step_episode(on, b, act(b));
   while (!b.done) {
     ob = gw::step_episode(on, b, act(b));
-    CHECK_FALSE(b.retracting);
+    CHECK_FALSE(b.procedure.retracting);
   }
   CHECK(ob.info.step_limit);
-  CHECK(b.recovery_attempts_used == 2);
+  CHECK(b.procedure.attempts_used == 2);
 }
 
 TEST_CASE("recovery assist: needs recovery attempts", "[runner][push_pull][recovery]") {

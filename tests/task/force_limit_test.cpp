@@ -78,7 +78,7 @@ TEST_CASE("force limit: the wire backs off exactly after a physics step above th
   CHECK(parted);
   CHECK(held > 0);
   // Each backed-off step counts its commanded push and the step it went back: the stall test sees the push.
-  CHECK(b.withheld_mm == Approx(2 * held * step_mm));
+  CHECK(b.force.withheld_mm == Approx(2 * held * step_mm));
   CHECK(1e-3 * peak_mN < free_peak);
   // Held at the wall the tip makes no progress: the paper's stall ends the episode.
   CHECK(out.info.stuck);
@@ -93,10 +93,10 @@ TEST_CASE("force limit, push/pull: the withheld push counts as wire pushed in wi
   REQUIRE(s.done);
   REQUIRE(out.info.stuck);
   const double stall_mm = task.config.stuck_steps * task.config.frame_skip * task.config.dt_s * task.config.push_mm_per_s;
-  CHECK(s.withheld_mm > 0);
+  CHECK(s.force.withheld_mm > 0);
   // The wire itself went in less than a stall's length past its best: the withheld pushes made up the rest.
-  CHECK(s.wire.inserted_length_mm - s.inserted_at_best_mm < stall_mm);
-  CHECK(s.wire.inserted_length_mm + s.withheld_mm - s.inserted_at_best_mm >= stall_mm);
+  CHECK(s.wire.inserted_length_mm - s.stall.inserted_at_best_mm < stall_mm);
+  CHECK(s.wire.inserted_length_mm + s.force.withheld_mm - s.stall.inserted_at_best_mm >= stall_mm);
 }
 
 TEST_CASE("force limit with recovery: the stall at the limit starts a pull-back, which the limit never holds",
@@ -112,10 +112,10 @@ TEST_CASE("force limit with recovery: the stall at the limit starts a pull-back,
       CHECK(out.info.push_held_steps == 0);
       CHECK(s.wire.inserted_length_mm < inserted);
     }
-    if (pulled && !s.retracting) break;
+    if (pulled && !s.procedure.retracting) break;
   }
   CHECK(pulled);
-  CHECK(s.recovery_attempts_used == 1);
+  CHECK(s.procedure.attempts_used == 1);
 }
 
 TEST_CASE("force limit: off by default, and checked", "[task][force]") {

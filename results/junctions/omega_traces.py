@@ -3,7 +3,7 @@ steps at or below -0.95), how much it rolls (share of steps with |rotation actio
 
 in:  one or more navigate output folders (their episode*_target*.json trajectories)
 out: one line per episode on stdout
-Used for results/junctions/README.md, "Correction": python3 results/junctions/omega_traces.py /tmp/t5_separate ...
+Used for results/junctions/README.md, "Correction": python3 results/junctions/omega_traces.py runs/t5_separate ...
 """
 import glob
 import json

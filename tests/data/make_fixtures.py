@@ -3,8 +3,8 @@
 Not run in CI: the files it writes are committed. It needs the `vtk` package (9.x, from PyPI),
 which is not a project dependency; use a throwaway virtual environment:
 
-    python3 -m venv /tmp/vtkvenv && /tmp/vtkvenv/bin/pip install vtk
-    /tmp/vtkvenv/bin/python tests/data/make_fixtures.py
+    python3 -m venv .cache/vtkvenv && .cache/vtkvenv/bin/pip install vtk
+    .cache/vtkvenv/bin/python tests/data/make_fixtures.py [--vmtk-output T1_VMTK.vtp]
 
 Truth: anatomies/train/t1_straight_y/t1_straight_y.truth.json (a Y: trunk (0,0,0)->(0,0,60),
 branches to (-27,0,126) = target 1 and (27,0,126) = target 2, radius 1.75 mm everywhere).
@@ -24,7 +24,7 @@ vtkXMLPolyDataWriter, the writer vmtkcenterlines uses, once per encoding:
 t1_straight_y_vmtkcenterlines.vtp is vmtkcenterlines' own output (vmtk 1.5.2, VTK 9.6.2) on
 anatomies/train/t1_straight_y/t1_straight_y.stl with source (0,0,0) and targets
 (-27,0,126), (27,0,126), resampled every 0.5 mm (see training/guidewire_nav/vmtk_centerline.py);
-it is copied in, not made here.
+it is copied in (from --vmtk-output, when given), not made here.
 
 Slicer fixtures follow markups-schema-v1.0.3: a trunk curve, two branch curves starting at the
 bifurcation (the second drawn backwards, target to bifurcation), and a point list with one
@@ -32,6 +32,7 @@ fiducial 1 mm off each target end:
   y_curves_lps.mrk.json   coordinateSystem LPS (Slicer's default), no radii
   y_curves_ras.mrk.json   coordinateSystem RAS, with a "Radius" measurement per control point
 """
+import argparse
 import json
 import shutil
 from pathlib import Path
@@ -109,7 +110,7 @@ def float32_copy(poly):
     return out
 
 
-def write_vmtk(truth):
+def write_vmtk(truth, vmtk_output=None):
     VMTK.mkdir(parents=True, exist_ok=True)
     lines = vmtk_lines(truth)
     plain = polydata(lines)
@@ -155,9 +156,8 @@ def write_vmtk(truth):
     (VMTK / "bad_no_lines.vtp").write_text(
         (VMTK / "y_ascii.vtp").read_text().replace('NumberOfLines="2"', 'NumberOfLines="0"'))
 
-    real = Path("/tmp/vmtkrun/t1_vmtk.vtp")
-    if real.exists():
-        shutil.copy(real, VMTK / "t1_straight_y_vmtkcenterlines.vtp")
+    if vmtk_output is not None:
+        shutil.copy(vmtk_output, VMTK / "t1_straight_y_vmtkcenterlines.vtp")
 
 
 def control_point(i, label, p):
@@ -212,9 +212,16 @@ def write_slicer(truth):
         (SLICER / f"y_curves_{'lps' if lps else 'ras'}.mrk.json").write_text(json.dumps(doc, indent=2) + "\n")
 
 
-def main():
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--vmtk-output", type=Path,
+                   help="vmtkcenterlines' output on t1_straight_y, copied to t1_straight_y_vmtkcenterlines.vtp "
+                        "(without it the committed copy stays)")
+    a = p.parse_args(argv)
+    if a.vmtk_output is not None and not a.vmtk_output.is_file():
+        p.error(f"--vmtk-output {a.vmtk_output}: no such file")
     truth = json.loads(TRUTH.read_text())
-    write_vmtk(truth)
+    write_vmtk(truth, a.vmtk_output)
     write_slicer(truth)
     print("vtk", vtk.vtkVersion.GetVTKVersion(), "->", VMTK, SLICER)
 

@@ -36,7 +36,11 @@ def test_short_run_on_a_training_pattern():
     # t1 is reached by the scripted rule from every start in the results table (100 of 100 training episodes).
     assert scripted["successes"] == 4
     assert scripted["per_anatomy"]["t1_straight_y"]["physics_problem"] == 0
-    assert 0 <= push["successes"] <= 4
+    # Without turning, the wire takes the wrong branch of the Y in some of these episodes (3 of the 4 at
+    # seed 0) and ends nowhere else: no stall, no step limit, no physics problem.
+    t1 = push["per_anatomy"]["t1_straight_y"]
+    assert push["successes"] < scripted["successes"]
+    assert t1["successes"] + t1["wrong_branch"] == 4 and t1["physics_problem"] == 0
 
 
 @pytest.mark.parametrize("cpp_name, controller", [("scripted-omega", baselines.OmegaController),

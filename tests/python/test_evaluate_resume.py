@@ -91,7 +91,7 @@ def test_an_interrupted_run_keeps_its_finished_rows_and_resumes_to_the_same_tabl
     proc.communicate(timeout=600)
     assert proc.returncode in (0, -signal.SIGTERM)  # 0: it finished before the signal (rows take seconds)
     written = json.loads(results.read_text())  # whole, never half a file (written atomically)
-    assert 1 <= len(written["rows"]) <= 3
+    assert written["rows"]  # results.json appears when a row is finished, never with none (at most 3: the next line)
     assert [r["name"] for r in written["rows"]] == ROWS[:len(written["rows"])]
     done = run(evaluate, tmp_path, "--resume")
     assert f"{len(written['rows'])} finished row(s)" in done.stderr

@@ -28,7 +28,9 @@ def test_shipped_actor_scores_on_validation_trees_and_training_anatomies(tmp_pat
     # The shipped actor (obs/3, 2026-11-30) reached all 150 validation episodes at 10 per target (seeds 1000+
     # and 2000+); the obs/2 actor before it 142 and 139. Push-only gets ~20% on such trees.
     assert s["validation_successes"] >= 9
-    assert s["training_episodes"] >= 1 and 0 <= s["training_successes"] <= s["training_episodes"]
+    # The training row's 100 episodes at scale 0.02; the shipped actor reached 40 of 40 there (seeds 5000+).
+    assert s["training_episodes"] == 2
+    assert s["training_successes"] == 2
 
 
 def test_a_broken_actor_file_is_a_clear_error(tmp_path, capsys):

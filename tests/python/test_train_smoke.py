@@ -255,8 +255,14 @@ def test_score_checkpoints_exports_and_scores_a_run(smoke_run, capsys):
     report = json.loads((smoke_run / "scores.json").read_text())
     s = report["scores"]["100"]
     assert s["validation_episodes"] == 15  # 4 + 4 + 3 + 4 validation targets, one episode each
-    assert 0 <= s["validation_successes"] <= 15
-    assert s["validation_successes"] == sum(sum(t.values()) for t in s["validation"].values())
+    assert {name: sorted(map(int, t)) for name, t in s["validation"].items()} == {
+        Path(mesh).stem: targets for mesh, targets in score_checkpoints.VALIDATION}
+    # A count is what navigate itself says for that actor, anatomy, target and seed (1000, the default).
+    mesh, targets = score_checkpoints.VALIDATION[0]
+    alone = subprocess.run([str(_app("navigate")), "--anatomy", mesh, "--target", str(targets[0]), "--policy",
+                            str(smoke_run / "scored" / "ckpt_100.json"), "--episodes", "1", "--seed", "1000", "--json"],
+                           capture_output=True, text=True, cwd=REPO, check=True)
+    assert s["validation"][Path(mesh).stem][str(targets[0])] == json.loads(alone.stdout)["outcomes"]["success"]
     assert "| 100 |" in capsys.readouterr().out
 
     # A checkpoint the run does not have is named, not a traceback.

@@ -6,7 +6,7 @@ with progress bar, logs, checkpoints and periodic evaluation -> export the deter
 for the C++ runtime -> training-curve PNG.
 
     gw-train --total-steps 150000 --envs 2 --out runs/sac      # = python -m guidewire_nav.train ...
-    gw-train --total-steps 300 --learning-starts 100 --out /tmp/smoke   # CI smoke run
+    gw-train --total-steps 300 --learning-starts 100 --out runs/smoke   # CI smoke run
     gw-train --total-steps 200000 --envs 2 --out runs/sac --resume     # on from runs/sac's last checkpoint
 
 Paper (Scarponi et al., section 3.1): actor and critics 3x256, lr 1e-4, batch 256, buffer 10,000,

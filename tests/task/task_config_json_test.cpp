@@ -74,7 +74,7 @@ TEST_CASE("task JSON: a round trip keeps every field, and every field is written
   }
 }
 
-TEST_CASE("task JSON: a partial object changes only its keys; the observation may be a layout name") {
+TEST_CASE("task JSON: a partial object changes only its keys, and the observation may be a layout name") {
   const gw::TaskConfig base = changed_config();
   const gw::TaskConfig c =
       gw::task_config_from_json({{"push_mm_per_s", 12.0}, {"reward", {{"omega_slope", 6.0}}}}, base, /*check=*/false);

@@ -117,7 +117,7 @@ TEST_CASE("push/pull: a time cost comes off every step, stopped or moving, and n
   CHECK_THROWS_WITH(gw::check_task_config(costly.config), Catch::Contains("reward_time_per_step"));
 }
 
-TEST_CASE("push/pull: the aim is paid by its change over the step, whatever the wire does; progress by new depth",
+TEST_CASE("push/pull: the aim is paid by its change over the step, whatever the wire does, and progress by new depth",
           "[runner][push_pull]") {
   gw::NavigationTask task = t1_task(true, 0);
   const gw::TaskConfig& c = task.config;

@@ -21,7 +21,7 @@ gw::TaskConfig parse(std::vector<std::string> args) {
 
 }  // namespace
 
-TEST_CASE("task options: no flag gives the defaults; each flag sets its field") {
+TEST_CASE("task options: no flag gives the defaults, and each flag sets its field") {
   CHECK(gw::task_config_to_json(parse({})) == gw::task_config_to_json(gw::TaskConfig{}));
   const gw::TaskConfig c = parse({"--push-speed", "5", "--recovery", "3", "--recovery-assist", "--recovery-turn", "90",
                                   "--force-limit", "1.5", "--junctions", "kway", "--task-scale", "vessel",

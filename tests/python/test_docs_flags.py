@@ -17,6 +17,9 @@ The convention in docs/commands.md, which this test enforces:
 - The flags apps/runner/task_options.cpp declares once for navigate, evaluate and guidewire-server
   (TASK_OPTION_APPS) are documented once, in the section headed "Task options"; it counts for each of
   those three.
+- A group of a command's --help titled "OTHER's flags ..." (gw-cluster's "evaluate's flags (`evaluate --help`),
+  passed to every shard unchanged") holds another command's flags, passed on: they are OTHER's, documented in
+  OTHER's section (the command's own may name them too), and must all be in OTHER's --help.
 A flag the help lists that the command's sections do not name fails, and so does a flag they name that the
 help does not list; each failure names the command and the flag.
 """
@@ -66,6 +69,24 @@ def option_flags(help_text: str) -> set[str]:
                 flags.update(name for name in token.rstrip(",").split(",") if name.startswith("--"))
             names_follow = token.endswith(",")
     return flags - EXCLUDED
+
+
+def help_groups(help_text: str) -> list[tuple[str, str]]:
+    """[(title, text)] of a --help's option groups: a line at column 0 ending with ':' starts one (CLI11's
+    "Options:", "Task:"; argparse's "options:", "evaluate's flags (...), passed to every shard unchanged:")."""
+    groups = [("", [])]
+    for line in help_text.splitlines():
+        if re.match(r"^\S.*:$", line):
+            groups.append((line[:-1], []))
+        else:
+            groups[-1][1].append(line)
+    return [(title, "\n".join(lines)) for title, lines in groups]
+
+
+def passed_on(title: str, commands) -> str | None:
+    """The command whose flags a help group titled "OTHER's flags ..." passes on, else None."""
+    found = re.match(r"^([\w-]+)'s flags\b", title)
+    return found.group(1) if found and found.group(1) in commands else None
 
 
 def _run_help(command: tuple[str, ...]) -> str:
@@ -176,6 +197,14 @@ def test_doc_flags_follow_the_convention():
     assert doc_flags(sections["gw-cluster evaluate"], "gw-cluster evaluate", commands) == {"--rows"}
 
 
+def test_help_groups_find_passed_on_flags():
+    text = ("options:\n  -h, --help  help\n  --out OUT   folder\n"
+            "evaluate's flags (`evaluate --help`), passed to every shard unchanged:\n  --seed SEED  seed\n")
+    groups = help_groups(text)
+    assert [passed_on(title, ["evaluate"]) for title, _ in groups] == [None, None, "evaluate"]
+    assert [option_flags(t) for _, t in groups] == [set(), {"--out"}, {"--seed"}]
+
+
 def test_commands_md_documents_every_flag(helps):
     commands = sorted(helps)
     sections = doc_sections(DOC.read_text(), commands)
@@ -188,11 +217,19 @@ def test_commands_md_documents_every_flag(helps):
         if command in TASK_OPTION_APPS:
             assert TASK_OPTIONS_HEADING in sections, f"docs/commands.md: no '{TASK_OPTIONS_HEADING}' section"
             documented |= doc_flags(sections[TASK_OPTIONS_HEADING], command, commands)
-        listed = option_flags(helps[command])
+        listed, passed = set(), set()
+        for title, text in help_groups(helps[command]):
+            other = passed_on(title, commands)
+            if other is None:
+                listed |= option_flags(text)
+            else:
+                passed |= option_flags(text)
+                for flag in sorted(option_flags(text) - option_flags(helps[other])):
+                    problems.append(f"{command} {flag}: passed on as {other}'s, not in {other} --help")
         for flag in sorted(listed - documented):
             if (command, flag) not in ALLOWED:
                 problems.append(f"{command} {flag}: in --help, not in docs/commands.md's section for it")
-        for flag in sorted(documented - listed):
+        for flag in sorted(documented - listed - passed):
             if (command, flag) not in ALLOWED:
                 problems.append(f"{command} {flag}: in docs/commands.md's section for it, not in --help")
     assert not problems, "docs/commands.md and --help disagree:\n" + "\n".join(problems)

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "engine/scene/moving_wall.hpp"
+#include "engine/scene/wall_distance_by_grid.hpp"
 
 namespace gw {
 
@@ -69,7 +70,8 @@ void refresh(const VesselScene& scene, const Eigen::Vector3d& p, double radius, 
     for (std::size_t i = 0; i < n; ++i) c.rest_spheres.push_back(scene.face_spheres[c.triangles[i]]);
   if (n == 0) {
     // No wall within `radius`: the point may move until it could be within reach of the wall.
-    c.clearance = moving ? wall_distance_at(scene, t, p).signed_distance : wall_distance(scene, p).signed_distance;
+    c.clearance = moving ? wall_distance_at(scene, t, p).signed_distance
+                         : wall_distance_by_grid(scene, p, radius).signed_distance;
     c.gathered = std::max(radius, std::abs(c.clearance));
   }
 }
@@ -148,7 +150,8 @@ WallDistance cached_wall_distance(const WireModel& model, const VesselScene& sce
     moved = 0;
   }
   if (c.triangles.empty()) {
-    if (c.clearance < 0) return motion ? wall_distance_at(scene, t, p) : wall_distance(scene, p);  // outside: exact
+    if (c.clearance < 0)  // outside: exact
+      return motion ? wall_distance_at(scene, t, p) : wall_distance_by_grid(scene, p, need);
     WallDistance far;
     far.signed_distance = c.clearance - moved;  // lower bound, >= need
     c.bound_point = p;

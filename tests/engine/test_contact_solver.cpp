@@ -11,6 +11,7 @@
 #include "anatomy_fixture.hpp"
 #include "random_systems.hpp"
 #include "engine/contact/solve_contacts.hpp"
+#include "engine/scene/wall_distance_by_grid.hpp"
 
 using namespace gw;
 
@@ -36,6 +37,29 @@ TEST_CASE("the grid's range query holds every triangle FCL finds within the radi
     total += fcl_found.size();
   }
   CHECK(total > 1000);  // the queries did reach the wall
+}
+
+TEST_CASE("the grid's closest wall point is FCL's, bit for bit, near and far from the wall", "[contact][grid]") {
+  const test::Anatomy a = test::load_anatomy("test/coronary/coronary");
+  const VesselScene& s = a.scene;
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> face(0, static_cast<int>(s.mesh.F.rows()) - 1);
+  std::uniform_real_distribution<double> u(-1, 1), scale(0.01, 6.0), start(0.01, 3.0);
+  for (int q = 0; q < 400; ++q) {
+    // Around the wall, inside and outside, up to 6 mm away (the lumen's middle and beyond the mesh).
+    const Eigen::Vector3d p =
+        s.face_centres.row(face(rng)).transpose() + scale(rng) * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    const WallDistance slow = wall_distance(s, p), fast = wall_distance_by_grid(s, p, start(rng));
+    REQUIRE(fast.triangle == slow.triangle);
+    REQUIRE(fast.signed_distance == slow.signed_distance);
+    REQUIRE(fast.closest == slow.closest);
+    REQUIRE(fast.inward == slow.inward);
+  }
+  // Far outside the mesh's box: the search radius grows until it holds the nearest triangle.
+  const Eigen::Vector3d far(500, -400, 300);
+  const WallDistance slow = wall_distance(s, far), fast = wall_distance_by_grid(s, far, 0.5);
+  CHECK(fast.triangle == slow.triangle);
+  CHECK(fast.signed_distance == slow.signed_distance);
 }
 
 TEST_CASE("a point outside the grid's box finds nothing, an empty mesh is refused", "[contact][grid]") {

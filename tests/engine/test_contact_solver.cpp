@@ -62,6 +62,53 @@ TEST_CASE("the grid's closest wall point is FCL's, bit for bit, near and far fro
   CHECK(fast.signed_distance == slow.signed_distance);
 }
 
+TEST_CASE("the plane early out of the closest-triangle scan changes no answer", "[contact][grid]") {
+  // It skips only triangles that could not have replaced the best so far (farther by more than the tie
+  // tolerance), so the scan's answer is the one without it, bit for bit, ties on shared edges and
+  // vertices included (points on the wall: every distance there is a tie within 1e-12 mm^2).
+  const test::Anatomy a = test::load_anatomy("test/coronary/coronary");
+  const VesselScene& s = a.scene;
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> face(0, static_cast<int>(s.mesh.F.rows()) - 1), corner(0, 2);
+  std::uniform_real_distribution<double> u(-1, 1), scale(0.0, 1.0);
+  std::vector<int> list;
+  int found = 0;
+  for (int q = 0; q < 3000; ++q) {
+    // Around the wall, and on its vertices and edges (ties between the faces that share them).
+    const int f = face(rng);
+    Eigen::Vector3d p = s.face_centres.row(f).transpose();
+    if (q % 3 == 1) p = s.face_corners[f].col(corner(rng));
+    if (q % 3 == 2) p = 0.5 * (s.face_corners[f].col(0) + s.face_corners[f].col(1));
+    p += std::pow(10.0, -7 * scale(rng)) * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    const double cutoff = 0.7;
+    triangles_near(s, p, cutoff, list);
+    // The scan without the plane early out: the same bounds with every plane zero (no bound, as for
+    // a thin face), so that both answers come from the same compiled arithmetic.
+    std::vector<Eigen::Vector4d> bounds, spheres_only;
+    for (int t : list) {
+      bounds.push_back(s.face_spheres[t]);
+      bounds.push_back(s.face_planes[t]);
+      spheres_only.push_back(s.face_spheres[t]);
+      spheres_only.push_back(Eigen::Vector4d::Zero());
+    }
+    const int hint = q % 2 == 0 || list.empty() ? -1 : static_cast<int>(rng() % list.size());
+    int best = hint;
+    const WallDistance ref = wall_distance_among(s, p, list, cutoff, nullptr, 0, &best, &spheres_only);
+    for (const bool in_order : {false, true}) {
+      int position = hint;
+      const WallDistance wd =
+          wall_distance_among(s, p, list, cutoff, nullptr, 0, &position, in_order ? &bounds : nullptr);
+      REQUIRE(wd.triangle == ref.triangle);
+      REQUIRE(position == best);
+      REQUIRE(wd.signed_distance == ref.signed_distance);
+      REQUIRE(wd.closest == ref.closest);
+      REQUIRE(wd.inward == ref.inward);
+      found += wd.triangle >= 0;
+    }
+  }
+  CHECK(found > 3000);
+}
+
 TEST_CASE("a point outside the grid's box finds nothing, an empty mesh is refused", "[contact][grid]") {
   const test::Anatomy a = test::load_anatomy("train/t1_straight_y/t1_straight_y");
   std::vector<int> out{1, 2, 3};

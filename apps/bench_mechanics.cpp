@@ -1,15 +1,16 @@
 // bench-mechanics [--anatomy STEM] [--push MM_PER_S] [--length MM] [--params F.json] [--friction-torque]
 //                 [--heart-rate BPM [--motion FILE]]: mechanics speed.
 // Prints one JSON object: a full insertion into a committed anatomy (coronary by default) with the
-// per-stage breakdown, and the cost per integration sub-step for 50, 100, 200 and 400 nodes. With a
-// heart rate, the same insertion again in the beating vessel (issue 36) in the same run, under
-// "beating", with its steps per second against the static run's (by wall time, and by CPU time; the two
-// insertions run in turn, ten control steps each, so that the machine's changing speed cancels in the
-// ratio). The motion: FILE (a cardiac motion JSON, engine/scene/wall_motion.hpp), or by default the
-// generator's coronary field (12% radial contraction, 10% axial shortening, 2.5 deg/cm twist about -z
-// through the origin: the field of anatomies/test/coronary_deformed) held still at the inlet (the guide
-// catheter's frame).
+// per-stage breakdown and a hash of its trajectory (bit-identity checks of optimisations), and the cost
+// per integration sub-step for 50, 100, 200 and 400 nodes. With a heart rate, the same insertion again
+// in the beating vessel (issue 36) in the same run, under "beating", with its steps per second against
+// the static run's (by wall time, and by CPU time; the two insertions run in turn, ten control steps
+// each, so that the machine's changing speed cancels in the ratio). The motion: FILE (a cardiac motion
+// JSON, engine/scene/wall_motion.hpp), or by default the generator's coronary field (12% radial
+// contraction, 10% axial shortening, 2.5 deg/cm twist about -z through the origin: the field of
+// anatomies/test/coronary_deformed) held still at the inlet (the guide catheter's frame).
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -72,6 +73,8 @@ int main(int argc, char** argv) {
                                {"assemble_us", us(b.stages.assemble_s)},
                                {"solve_us", us(b.stages.solve_s)},
                                {"constraints_us", us(b.stages.constraints_s)}};
+      char hash[17];
+      std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(b.trajectory_hash));
       return nlohmann::json{{"ok", b.ok},
                             {"problem", b.problem},
                             {"inserted_mm", b.inserted_mm},
@@ -87,7 +90,8 @@ int main(int argc, char** argv) {
                             {"max_penetration_mm", b.max_penetration_mm},
                             {"split_substeps", b.split_substeps},
                             {"us_per_substep_by_stage", stages},
-                            {"tip", {b.tip.x(), b.tip.y(), b.tip.z()}}};
+                            {"tip", {b.tip.x(), b.tip.y(), b.tip.z()}},
+                            {"trajectory_hash", hash}};
     };
     if (heart_rate <= 0) {
       out["insertion"] = insertion(gw::run_insertion_benchmark(model, scene, inlet, dir, roll, push, length));

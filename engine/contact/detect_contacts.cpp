@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "engine/scene/moving_wall.hpp"
+#include "engine/scene/wall_distance_by_grid.hpp"
 
 namespace gw {
 
@@ -64,12 +65,20 @@ void refresh(const VesselScene& scene, const Eigen::Vector3d& p, double radius, 
     c.lower_bounds[i] = order[i].first;
     c.triangles[i] = order[i].second;
   }
+  // Scanned with the list, not through the scene's arrays (cache misses).
   c.rest_spheres.clear();
-  if (rest_frame)  // scanned with the list, not through the scene's array (cache misses)
+  c.face_bounds.clear();
+  if (rest_frame)
     for (std::size_t i = 0; i < n; ++i) c.rest_spheres.push_back(scene.face_spheres[c.triangles[i]]);
+  else if (!moving)
+    for (std::size_t i = 0; i < n; ++i) {
+      c.face_bounds.push_back(scene.face_spheres[c.triangles[i]]);
+      c.face_bounds.push_back(scene.face_planes[c.triangles[i]]);
+    }
   if (n == 0) {
     // No wall within `radius`: the point may move until it could be within reach of the wall.
-    c.clearance = moving ? wall_distance_at(scene, t, p).signed_distance : wall_distance(scene, p).signed_distance;
+    c.clearance = moving ? wall_distance_at(scene, t, p).signed_distance
+                         : wall_distance_by_grid(scene, p, radius).signed_distance;
     c.gathered = std::max(radius, std::abs(c.clearance));
   }
 }
@@ -148,7 +157,8 @@ WallDistance cached_wall_distance(const WireModel& model, const VesselScene& sce
     moved = 0;
   }
   if (c.triangles.empty()) {
-    if (c.clearance < 0) return motion ? wall_distance_at(scene, t, p) : wall_distance(scene, p);  // outside: exact
+    if (c.clearance < 0)  // outside: exact
+      return motion ? wall_distance_at(scene, t, p) : wall_distance_by_grid(scene, p, need);
     WallDistance far;
     far.signed_distance = c.clearance - moved;  // lower bound, >= need
     c.bound_point = p;
@@ -157,7 +167,8 @@ WallDistance cached_wall_distance(const WireModel& model, const VesselScene& sce
     return far;
   }
   WallDistance wd = motion ? wall_distance_among_at(scene, t, p, c.triangles, cutoff, &c.lower_bounds, moved, &c.closest)
-                           : wall_distance_among(scene, p, c.triangles, cutoff, &c.lower_bounds, moved, &c.closest);
+                           : wall_distance_among(scene, p, c.triangles, cutoff, &c.lower_bounds, moved, &c.closest,
+                                                 &c.face_bounds);
   if (wd.triangle < 0) wd.signed_distance = cutoff;  // nothing within the cutoff: well inside
   c.bound_point = p;
   c.bound = wd.signed_distance;  // exact, or (triangle < 0) a lower bound

@@ -58,14 +58,25 @@ TriangleGrid make_triangle_grid(const TriangleMesh& mesh, double cell) {
   }
   std::sort(pairs.begin(), pairs.end());
   g.items.reserve(pairs.size());
+  g.item_first_cell.reserve(pairs.size());
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     if (i == 0 || pairs[i].first != pairs[i - 1].first) {
       g.keys.push_back(pairs[i].first);
       g.begin.push_back(static_cast<int>(g.items.size()));
     }
     g.items.push_back(pairs[i].second);
+    g.item_first_cell.push_back(g.first_cell[pairs[i].second]);
   }
   g.begin.push_back(static_cast<int>(g.items.size()));
+  const std::int64_t columns = static_cast<std::int64_t>(g.dims.x()) * g.dims.y();
+  if (columns <= (std::int64_t{1} << 22)) {
+    g.column_begin.resize(columns + 1);
+    std::size_t k = 0;
+    for (std::int64_t c = 0; c <= columns; ++c) {
+      while (k < g.keys.size() && g.keys[k] < c * g.dims.z()) ++k;
+      g.column_begin[c] = static_cast<int>(k);
+    }
+  }
   return g;
 }
 
@@ -78,18 +89,24 @@ void grid_candidates(const TriangleGrid& g, const Eigen::Vector3d& p, double rad
   }
   for (int x = r[0][0]; x <= r[0][1]; ++x)
     for (int y = r[1][0]; y <= r[1][1]; ++y) {
-      // Cells along z are consecutive keys: one binary search per (x, y) column.
+      // Cells along z are consecutive keys: one binary search per (x, y) column, within the column's
+      // keys where the grid indexes them.
       const std::int64_t first = cell_key(g, x, y, r[2][0]), last = cell_key(g, x, y, r[2][1]);
-      auto it = std::lower_bound(g.keys.begin(), g.keys.end(), first);
+      auto lo = g.keys.begin(), hi = g.keys.end();
+      if (!g.column_begin.empty()) {
+        const std::int64_t column = static_cast<std::int64_t>(x) * g.dims.y() + y;
+        hi = g.keys.begin() + g.column_begin[column + 1];
+        lo = g.keys.begin() + g.column_begin[column];
+      }
+      auto it = std::lower_bound(lo, hi, first);
       for (; it != g.keys.end() && *it <= last; ++it) {
         const std::size_t k = static_cast<std::size_t>(it - g.keys.begin());
         const int z = static_cast<int>(*it - cell_key(g, x, y, 0));
         for (int i = g.begin[k]; i < g.begin[k + 1]; ++i) {
           // A triangle spanning several cells is reported by the first of them inside the query box.
-          const int f = g.items[i];
-          const Eigen::Vector3i& c = g.first_cell[f];
+          const Eigen::Vector3i& c = g.item_first_cell[i];
           if (std::max(c.x(), r[0][0]) == x && std::max(c.y(), r[1][0]) == y && std::max(c.z(), r[2][0]) == z)
-            out.push_back(f);
+            out.push_back(g.items[i]);
         }
       }
     }

@@ -19,6 +19,12 @@ struct TriangleGrid {
   std::vector<int> begin;                            // keys.size() + 1 offsets into `items`
   std::vector<int> items;                            // triangles per cell
   std::vector<Eigen::Vector3i> first_cell;           // per triangle: lowest cell of its bounding box
+  // Per (x, y) column of cells, x * dims.y + y: the first of `keys` in it or after (and one past the
+  // end): a query's column found without a binary search. Empty (binary search) for a grid of more than
+  // 2^22 columns.
+  std::vector<int> column_begin;
+  std::vector<Eigen::Vector3i> item_first_cell;      // per entry of `items`: its triangle's first_cell (read
+                                                     // in order by a query, not scattered per triangle)
 };
 
 // Bins every triangle into the cells its bounding box overlaps. `cell` <= 0 picks twice the mean edge

@@ -45,6 +45,11 @@ VesselScene make_vessel_scene(const TriangleMesh& mesh) {
     s.face_centres.row(f) = centre.transpose();
     s.face_radii(f) = std::max({(a - centre).norm(), (b - centre).norm(), (c - centre).norm()});
     s.face_spheres.emplace_back(centre.x(), centre.y(), centre.z(), s.face_radii(f));
+    // The plane bound needs a normal accurate to 1e-10: the cross product's rounding, relative to its
+    // length, is a few 1e-16 over the sine of the face's angle at a.
+    const bool thin = !(len >= 1e-4 * (b - a).norm() * (c - a).norm());
+    const Eigen::Vector3d unit = thin ? Eigen::Vector3d::Zero() : Eigen::Vector3d(n / len);
+    s.face_planes.emplace_back(unit.x(), unit.y(), unit.z(), unit.dot(a));
     Eigen::Matrix3d corners;
     corners << a, b, c;
     s.face_corners.push_back(corners);
@@ -118,7 +123,8 @@ double nearest_triangle(const VesselScene& scene, const Eigen::Vector3d& p, int&
 }
 
 WallDistance wall_distance_among(const VesselScene& scene, const Eigen::Vector3d& p, const std::vector<int>& triangles,
-                                 double cutoff, const std::vector<double>* lower_bounds, double moved, int* hint) {
+                                 double cutoff, const std::vector<double>* lower_bounds, double moved, int* hint,
+                                 const std::vector<Eigen::Vector4d>* bounds) {
   WallDistance best;
   best.signed_distance = std::numeric_limits<double>::infinity();
   double best_d2 = cutoff * cutoff;
@@ -130,9 +136,19 @@ WallDistance wall_distance_among(const VesselScene& scene, const Eigen::Vector3d
   auto consider = [&](int position) {
     const int f = triangles[position];
     // Early out: the triangle lies inside its bounding sphere.
-    const Eigen::Vector4d& sphere = scene.face_spheres[f];
-    const double dc = (p - sphere.head<3>()).norm() - sphere[3];
+    const Eigen::Vector4d& sphere = bounds ? (*bounds)[2 * position] : scene.face_spheres[f];
+    const double centre_distance = (p - sphere.head<3>()).norm();
+    const double dc = centre_distance - sphere[3];
     if (dc > 0 && dc * dc > best_d2 * (1 + 1e-12)) return;
+    // Second early out: the triangle lies in its plane, |n.p - n.a| <= its distance. Taken only where
+    // the triangle is then farther than the best by more than the tie tolerance below (1e-12 (1 + d2)),
+    // however the two distances round: the slack covers the normal's error (face_planes: below 1e-10
+    // of |p - a| <= centre_distance + radius) and the products' rounding, the margins the tie band. So
+    // the triangle would not have replaced the best; skipping it leaves the answer as it was.
+    const Eigen::Vector4d& plane = bounds ? (*bounds)[2 * position + 1] : scene.face_planes[f];
+    const double slack = 1e-9 * (1 + centre_distance + sphere[3]) + 1e-13 * std::abs(plane[3]);
+    const double dp = std::abs(plane.head<3>().dot(p) - plane[3]) - slack;
+    if (dp > 0 && dp * dp > best_d2 * (1 + 1e-9) + 1e-11) return;
     int region = 0;
     const Eigen::Matrix3d& tri = scene.face_corners[f];
     const Eigen::Vector3d c = closest_point_on_triangle(p, tri.col(0), tri.col(1), tri.col(2), region);

@@ -24,6 +24,10 @@ struct VesselScene {
   Eigen::VectorXd face_radii;           // bounding-sphere radii around the centroids
   std::vector<Eigen::Vector4d> face_spheres;  // (centre, radius) packed per face for the hot loop
   std::vector<Eigen::Matrix3d> face_corners;  // columns a, b, c per face (contiguous)
+  // (n, n.a) per face: unit outward normal and offset, for the lower bound |n.p - n.a| of a point's
+  // distance to the face (wall_distance_among); n = 0 (no bound) for a face too thin for its computed
+  // normal to be trusted to 1e-10 (sine of its widest angle below 1e-4).
+  std::vector<Eigen::Vector4d> face_planes;
   std::shared_ptr<const VesselSceneBvh> bvh;
   std::shared_ptr<const TriangleGrid> grid;   // range queries of the per-point candidate lists
   std::shared_ptr<const WallMotion> motion;   // nullptr: a static wall (attach_wall_motion sets it)
@@ -49,14 +53,17 @@ struct WallDistance {
 WallDistance wall_distance(const VesselScene& scene, const Eigen::Vector3d& p);
 
 // Closest point among `triangles` only; signed_distance = +inf and triangle = -1 if none is within
-// `cutoff`. Triangles whose bounding sphere is farther than the best so far are skipped. With
+// `cutoff`. Triangles whose bounding sphere or plane (face_planes) is farther than the best so far are
+// skipped (the plane only where it proves the triangle farther by more than the tie tolerance and any
+// rounding: the answer is the one of scanning them). `bounds`: optional, 2 per triangle in list order,
+// its face_spheres and face_planes entries (read in order instead of scattered over the scene). With
 // `lower_bounds` (ascending, one per triangle, lower bounds of the distance to a point `moved` away
 // from p), the scan stops at the first triangle that cannot be closer than the best. `hint`: in, a
 // position in `triangles` to try before the others (e.g. the previous closest; the result does not
 // depend on it); out, the position of the closest triangle (-1 if none).
 WallDistance wall_distance_among(const VesselScene& scene, const Eigen::Vector3d& p, const std::vector<int>& triangles,
                                  double cutoff, const std::vector<double>* lower_bounds = nullptr, double moved = 0,
-                                 int* hint = nullptr);
+                                 int* hint = nullptr, const std::vector<Eigen::Vector4d>* bounds = nullptr);
 
 // Every triangle within `radius` of `p` (FCL sphere-vs-BVH collision query), appended to `out` after
 // clearing it.

@@ -2,11 +2,33 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <ctime>
 
 namespace gw {
 
 namespace {
+
+// Folds the bytes of `value` into the FNV-1a hash `h`.
+template <class T>
+void hash_bytes(std::uint64_t& h, const T& value) {
+  unsigned char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));
+  for (unsigned char b : bytes) h = (h ^ b) * 0x100000001b3ULL;
+}
+
+// Folds the wire's state and the step's contact count into the trajectory hash.
+void hash_step(std::uint64_t& h, const WireState& state, int contacts) {
+  for (std::size_t i = 0; i < state.x.size(); ++i) {
+    for (int a = 0; a < 3; ++a) {
+      hash_bytes(h, state.x[i][a]);
+      hash_bytes(h, state.v[i][a]);
+      hash_bytes(h, state.w[i][a]);
+    }
+    for (int a = 0; a < 4; ++a) hash_bytes(h, state.q[i].coeffs()[a]);
+  }
+  hash_bytes(h, contacts);
+}
 
 // One insertion in progress: its wire, its figures so far, and whether it has ended.
 struct InsertionRun {
@@ -51,6 +73,7 @@ void advance_insertion(const WireModel& model, const VesselScene& scene, double 
   b.max_penetration_mm = std::max(b.max_penetration_mm, rep.max_penetration_mm);
   b.split_substeps += rep.split_substeps;
   b.free_nodes_end = rep.free_nodes;
+  hash_step(b.trajectory_hash, run.state, rep.contacts);
   if (!rep.ok) {
     b.ok = false;
     b.problem = rep.problem;

@@ -37,6 +37,9 @@ struct WallCandidates {
   bool rest = false;
   Eigen::Vector3d rest_point = Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector4d> rest_spheres;  // rest bounding sphere per triangle, in list order (locality)
+  // Static walls: per triangle in list order, its bounding sphere (centre, radius) and its plane (unit
+  // normal, offset): the scene's face_spheres and face_planes, read in order by every scan of the list.
+  std::vector<Eigen::Vector4d> face_bounds;
 };
 
 struct WireState {

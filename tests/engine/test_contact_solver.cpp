@@ -11,6 +11,7 @@
 #include "anatomy_fixture.hpp"
 #include "random_systems.hpp"
 #include "engine/contact/solve_contacts.hpp"
+#include "engine/scene/wall_distance_by_grid.hpp"
 
 using namespace gw;
 
@@ -36,6 +37,76 @@ TEST_CASE("the grid's range query holds every triangle FCL finds within the radi
     total += fcl_found.size();
   }
   CHECK(total > 1000);  // the queries did reach the wall
+}
+
+TEST_CASE("the grid's closest wall point is FCL's, bit for bit, near and far from the wall", "[contact][grid]") {
+  const test::Anatomy a = test::load_anatomy("test/coronary/coronary");
+  const VesselScene& s = a.scene;
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> face(0, static_cast<int>(s.mesh.F.rows()) - 1);
+  std::uniform_real_distribution<double> u(-1, 1), scale(0.01, 6.0), start(0.01, 3.0);
+  for (int q = 0; q < 400; ++q) {
+    // Around the wall, inside and outside, up to 6 mm away (the lumen's middle and beyond the mesh).
+    const Eigen::Vector3d p =
+        s.face_centres.row(face(rng)).transpose() + scale(rng) * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    const WallDistance slow = wall_distance(s, p), fast = wall_distance_by_grid(s, p, start(rng));
+    REQUIRE(fast.triangle == slow.triangle);
+    REQUIRE(fast.signed_distance == slow.signed_distance);
+    REQUIRE(fast.closest == slow.closest);
+    REQUIRE(fast.inward == slow.inward);
+  }
+  // Far outside the mesh's box: the search radius grows until it holds the nearest triangle.
+  const Eigen::Vector3d far(500, -400, 300);
+  const WallDistance slow = wall_distance(s, far), fast = wall_distance_by_grid(s, far, 0.5);
+  CHECK(fast.triangle == slow.triangle);
+  CHECK(fast.signed_distance == slow.signed_distance);
+}
+
+TEST_CASE("the plane early out of the closest-triangle scan changes no answer", "[contact][grid]") {
+  // It skips only triangles that could not have replaced the best so far (farther by more than the tie
+  // tolerance), so the scan's answer is the one without it, bit for bit, ties on shared edges and
+  // vertices included (points on the wall: every distance there is a tie within 1e-12 mm^2).
+  const test::Anatomy a = test::load_anatomy("test/coronary/coronary");
+  const VesselScene& s = a.scene;
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> face(0, static_cast<int>(s.mesh.F.rows()) - 1), corner(0, 2);
+  std::uniform_real_distribution<double> u(-1, 1), scale(0.0, 1.0);
+  std::vector<int> list;
+  int found = 0;
+  for (int q = 0; q < 3000; ++q) {
+    // Around the wall, and on its vertices and edges (ties between the faces that share them).
+    const int f = face(rng);
+    Eigen::Vector3d p = s.face_centres.row(f).transpose();
+    if (q % 3 == 1) p = s.face_corners[f].col(corner(rng));
+    if (q % 3 == 2) p = 0.5 * (s.face_corners[f].col(0) + s.face_corners[f].col(1));
+    p += std::pow(10.0, -7 * scale(rng)) * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    const double cutoff = 0.7;
+    triangles_near(s, p, cutoff, list);
+    // The scan without the plane early out: the same bounds with every plane zero (no bound, as for
+    // a thin face), so that both answers come from the same compiled arithmetic.
+    std::vector<Eigen::Vector4d> bounds, spheres_only;
+    for (int t : list) {
+      bounds.push_back(s.face_spheres[t]);
+      bounds.push_back(s.face_planes[t]);
+      spheres_only.push_back(s.face_spheres[t]);
+      spheres_only.push_back(Eigen::Vector4d::Zero());
+    }
+    const int hint = q % 2 == 0 || list.empty() ? -1 : static_cast<int>(rng() % list.size());
+    int best = hint;
+    const WallDistance ref = wall_distance_among(s, p, list, cutoff, nullptr, 0, &best, &spheres_only);
+    for (const bool in_order : {false, true}) {
+      int position = hint;
+      const WallDistance wd =
+          wall_distance_among(s, p, list, cutoff, nullptr, 0, &position, in_order ? &bounds : nullptr);
+      REQUIRE(wd.triangle == ref.triangle);
+      REQUIRE(position == best);
+      REQUIRE(wd.signed_distance == ref.signed_distance);
+      REQUIRE(wd.closest == ref.closest);
+      REQUIRE(wd.inward == ref.inward);
+      found += wd.triangle >= 0;
+    }
+  }
+  CHECK(found > 3000);
 }
 
 TEST_CASE("a point outside the grid's box finds nothing, an empty mesh is refused", "[contact][grid]") {

@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
   app.add_option("--base-policy", o.base_policy,
                  "actor JSON trained on sensitivity/base only (sensitivity rows); give --policy's file to use the "
                  "shipped policy there (noted in the table)");
-  app.add_option("--index", o.index_path, "anatomies/index.json");
+  app.add_option("--index", o.index_path, "anatomy index JSON the table's rows name their anatomies in (default: the repository's anatomies/index.json)");
   app.add_option("--centerlines", centerlines, "extract (zero-shot pipeline) | truth");
   app.add_option("--episode-scale", o.episode_scale, "multiply every row's episode count");
   app.add_option("--seed", o.seed, "episode k of a row uses seed S+k");

@@ -50,8 +50,8 @@ class Settings:
                         "shipped rotation actor's task (obs/3, act/1). The paper's: training/tasks/paper.json; the "
                         "push/pull actor's: training/tasks/push_pull.json")
     init_model: str = arg("", "fine-tune: start from this SB3 SAC zip (e.g. a checkpoint)")
-    init_actor: str = arg("", "fine-tune: start the actor from an exported actor JSON (fresh critics); with "
-                              "--push-pull a rotation actor (obs/3, act/1) starts the rotation output, the "
+    init_actor: str = arg("", "fine-tune: start the actor from an exported actor JSON (fresh critics); when "
+                              "the task's action is act/2 a rotation actor (obs/3, act/1) starts the rotation output, the "
                               "insertion output starts pushing (export_actor.widen_to_push_pull)")
     init_log_std: float = arg(-2.3, "with --init-actor: its log-std head (the JSON has only the mean); -2.3 = std "
                                     "~0.1 before tanh")

@@ -95,7 +95,8 @@ TEST_CASE("stepping: wire advances, reward is Eq. 3 of the observation, action i
   for (int k = 0; k < 25; ++k) {
     out = gw::step_episode(task, s, 0.6);
     REQUIRE_FALSE(out.truncated);
-    CHECK(out.reward == gw::navigation_reward(out.obs[gw::obs_index::kOmega], out.obs[gw::obs_index::kLambda], 0.6));
+    CHECK(out.reward == gw::navigation_reward(out.obs[gw::obs_index::kOmega], out.obs[gw::obs_index::kLambda], 0.6,
+                                              task.config.reward));
     CHECK(out.obs[gw::obs_index::kAction] == 0.6);  // single bifurcation: always in control
     CHECK(out.info.in_control);
   }

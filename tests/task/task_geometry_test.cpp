@@ -202,8 +202,10 @@ TEST_CASE("reward is exactly paper Eq. 3", "[task]") {
       for (double a : {-1.0, -0.2, 0.0, 0.5, 1.0}) CHECK(gw::navigation_reward(w, l, a) == eq3(w, l, a));
   CHECK(gw::navigation_reward(0.1, 1.0, 0.0) == Approx(0.0).margin(1e-15));  // sigmoid centre
   CHECK(gw::navigation_reward(-1.0, 0.0, 0.0) == Approx(2.0 / (1.0 + std::exp(-5.5)) - 0.5));
-  CHECK(gw::TaskConfig{}.reward.omega_centre == 0.1);  // the task's default is the paper's
-  CHECK(gw::TaskConfig{}.reward.omega_slope == 5.0);
+  CHECK(gw::RewardShape{}.omega_centre == 0.1);  // the sigmoid's own default is the paper's
+  CHECK(gw::RewardShape{}.omega_slope == 5.0);
+  CHECK(gw::TaskConfig{}.reward.omega_centre == -0.5);  // the task's is the shipped actors' (reward.hpp says why)
+  CHECK(gw::TaskConfig{}.reward.omega_slope == 8.0);
 }
 
 TEST_CASE("reward sigmoid can be shifted and steepened", "[task]") {

@@ -77,21 +77,35 @@ TEST_CASE("push/pull: stopping holds the wire and is no stall, pulling stops at 
   gw::EpisodeState s = gw::reset_episode(task, 0, 1, 3);
   for (int k = 0; k < 20; ++k) gw::step_episode(task, s, gw::Action{0.0, 1.0});
   const double inserted = s.wire.inserted_length_mm;
-  // Three times the strict stall's 60 steps without pushing: no stall, the wire stays, stopping pays nothing.
-  for (int k = 0; k < 3 * task.config.stuck_steps; ++k) {
-    const gw::StepOutcome out = gw::step_episode(task, s, gw::Action{0.3, 0.0});
+  // Three times the strict stall's 60 steps without pushing: no stall, the wire stays; stopping earns no progress,
+  // only the aim's change, less the rotation's effort and the time cost (reward.hpp).
+  const gw::TaskConfig& c = task.config;
+  auto orientation = [&c](double w) {
+    return 2.0 / (1.0 + std::exp(c.reward.omega_slope * (w - c.reward.omega_centre))) - 1.0;
+  };
+  auto step = [&](const gw::Action& act, double& aim_change) {
+    const double before = s.obs[gw::obs_index::kOmega];
+    const gw::StepOutcome out = gw::step_episode(task, s, act);
+    aim_change = orientation(out.obs[gw::obs_index::kOmega]) - orientation(before);
+    return out;
+  };
+  double aim = 0.0;
+  for (int k = 0; k < 3 * c.stuck_steps; ++k) {
+    const gw::StepOutcome out = step(gw::Action{0.3, 0.0}, aim);
     REQUIRE_FALSE(out.truncated);
     REQUIRE_FALSE(out.terminated);
-    REQUIRE(out.reward == Approx(-0.2 * 0.3));  // only the rotation's effort
+    REQUIRE(out.reward == Approx(aim - 0.2 * 0.3 - c.reward_time_per_step).margin(1e-12));
     REQUIRE(out.obs[gw::obs_index::kInsertion] == 0.0);
   }
   CHECK(s.wire.inserted_length_mm == Approx(inserted).margin(1e-9));
-  // Back and forth earns nothing: 5 steps back, 5 steps in again reach no new depth; the step after does.
-  for (int k = 0; k < 5; ++k) REQUIRE(gw::step_episode(task, s, gw::Action{0.0, -1.0}).reward == 0.0);
-  for (int k = 0; k < 5; ++k) REQUIRE(gw::step_episode(task, s, gw::Action{0.0, 1.0}).reward == 0.0);
-  const gw::StepOutcome deeper = gw::step_episode(task, s, gw::Action{0.0, 1.0});
-  CHECK(deeper.reward == gw::navigation_reward(deeper.obs[gw::obs_index::kOmega], deeper.obs[gw::obs_index::kLambda], 0.0,
-                                               task.config.reward));
+  // Back and forth earns no progress: 5 steps back, 5 steps in again reach no new depth; the step after does.
+  for (int k = 0; k < 10; ++k) {
+    const gw::StepOutcome out = step(gw::Action{0.0, k < 5 ? -1.0 : 1.0}, aim);
+    REQUIRE(out.reward == Approx(aim - c.reward_time_per_step).margin(1e-12));
+  }
+  const gw::StepOutcome deeper = step(gw::Action{0.0, 1.0}, aim);
+  CHECK(deeper.reward == Approx(aim + 0.5 * (1.0 - deeper.obs[gw::obs_index::kLambda]) - c.reward_time_per_step)
+                             .margin(1e-12));
   // Pulling: back to the start insertion and no further (the command is then 0).
   for (int k = 0; k < 100; ++k) gw::step_episode(task, s, gw::Action{0.0, -1.0});
   CHECK(s.wire.inserted_length_mm >= task.config.initial_insertion_mm - 1e-9);

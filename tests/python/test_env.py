@@ -111,10 +111,10 @@ def test_subproc_vec_env_with_one_server_per_env(server_bin):
     try:
         venv.seed(7)
         obs = venv.reset()
-        assert obs.shape == (2, 11)
+        assert obs.shape == (2, 12)
         for _ in range(3):
             obs, rewards, dones, infos = venv.step(np.zeros((2, 1), dtype=np.float32))
-        assert obs.shape == (2, 11) and rewards.shape == (2,)
+        assert obs.shape == (2, 12) and rewards.shape == (2,)
         assert all("progress_mm" in i for i in infos)
     finally:
         venv.close()

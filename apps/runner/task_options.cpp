@@ -16,6 +16,7 @@ using nlohmann::json;
 template <class T, class Convert>
 CLI::Option* task_flag(CLI::App& app, TaskOptions& o, const std::string& name, const std::string& key,
                        const std::string& help, Convert convert) {
+  o.flag_keys.emplace_back(name, key.substr(key.rfind('/') + 1));
   return app
       .add_option_function<T>(
           name,
@@ -60,11 +61,9 @@ void add_task_options(CLI::App& app, TaskOptions& o) {
                  "the task flags below override it; default: the shipped actor's task")
       ->group("Task");
   task_flag<double>(app, o, "--push-speed", "push_mm_per_s",
-                    "insertion speed at the proximal end, mm/s (the shipped actors were trained at 10)")
-      ->check(CLI::PositiveNumber);
+                    "insertion speed at the proximal end, mm/s (the shipped actors were trained at 10)");
   task_flag<double>(app, o, "--intermediate-target", "intermediate_target_mm",
-                    "trees: lambda is measured to a point this many mm past each bifurcation (0 = at the hand-over)")
-      ->check(CLI::NonNegativeNumber);
+                    "trees: lambda is measured to a point this many mm past each bifurcation (0 = at the hand-over)");
   task_flag<std::string>(app, o, "--control", "control_mode",
                          "when the action applies: always, near_bifurcation, auto (always on a single bifurcation)");
   task_flag<std::string>(app, o, "--task-scale", "task_scale",
@@ -91,8 +90,7 @@ void add_task_options(CLI::App& app, TaskOptions& o) {
   task_flag<int>(app, o, "--recovery", "recovery_attempts",
                  "the procedure goes on after the strict end (a wrong branch, a stall): at most K pull-backs and "
                  "retries (docs/recovery.md; an act/2 actor pulls back itself); the outcome stays the strict "
-                 "episode's, the procedure's is under \"recovery\"")
-      ->check(CLI::NonNegativeNumber);
+                 "episode's, the procedure's is under \"recovery\"");
   task_switch(app, o, "--recovery-assist", {{"recovery_assist", true}},
               "with --recovery and an act/2 actor: the wrapper pulls the wire back on a stall, after stuck_steps env "
               "steps in a wrong child or standing still after the strict end (docs/recovery.md \"Assisted "
@@ -107,12 +105,10 @@ void add_task_options(CLI::App& app, TaskOptions& o) {
                       return static_cast<double>(deg * 3.141592653589793238462643383279502884L / 180.0);
                     })
       ->check(CLI::Range(0.0, 360.0));
-  task_flag<double>(app, o, "--recovery-pull-speed", "recovery_pull_mm_per_s", "with --recovery: the pull-back speed, mm/s")
-      ->check(CLI::PositiveNumber);
+  task_flag<double>(app, o, "--recovery-pull-speed", "recovery_pull_mm_per_s", "with --recovery: the pull-back speed, mm/s");
   task_flag<double>(app, o, "--force-limit", "force_limit_N",
                     "withhold the forward push while the wire presses the wall harder than this many newtons at one "
-                    "node (0 = off, the paper's task; docs/recovery.md \"Force limit\")")
-      ->check(CLI::NonNegativeNumber);
+                    "node (0 = off, the paper's task; docs/recovery.md \"Force limit\")");
 }
 
 TaskConfig resolve_task_config(const TaskOptions& o, const TaskConfig& base) {
@@ -128,7 +124,13 @@ TaskConfig resolve_task_config(const TaskOptions& o, const TaskConfig& base) {
   try {
     return task_config_from_json(o.flags, config);
   } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(o.task.empty() ? std::string(e.what()) : "--task " + o.task + " with the task flags: " + e.what());
+    std::string what = e.what();
+    // The check names the field; a value given by a flag is named by its flag too (the last one that sets it).
+    std::string flag;
+    for (const auto& [name, key] : o.flag_keys)
+      if (what.find(key) != std::string::npos && o.flags.dump().find("\"" + key + "\"") != std::string::npos) flag = name;
+    if (!flag.empty()) what = flag + ": " + what;
+    throw std::invalid_argument(o.task.empty() ? what : "--task " + o.task + " with the task flags: " + what);
   }
 }
 

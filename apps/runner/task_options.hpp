@@ -5,6 +5,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "engine/task/task_config.hpp"
 
@@ -13,6 +15,7 @@ namespace gw {
 struct TaskOptions {
   std::string task;                                 // --task: a JSON file, or a JSON object given inline
   nlohmann::json flags = nlohmann::json::object();  // the task flags given, as task-JSON keys
+  std::vector<std::pair<std::string, std::string>> flag_keys;  // each task flag and the key it sets (error messages)
 };
 
 // Inputs: an app, the options it fills. Outputs: --task and the task flags declared on `app` (group "Task").

@@ -158,8 +158,9 @@ def test_fine_tuning_starts_from_the_given_networks(smoke_run, tmp_path):
     assert settings["task_settings"]["reward_force_per_N"] == 0.5
     assert settings["task_settings"]["force_limit_N"] == 1.5
     assert settings["task_settings"]["push_mm_per_s"] == 10.0
-    assisted = train.server_args(train.Settings(push_pull=True, recovery=3, recovery_assist=True))
-    assert "--recovery-assist" in assisted and "--recovery-assist" not in train.server_args(train.Settings())
+    assisted = train.server_args(train.Settings(task='{"recovery_attempts": 3, "recovery_assist": true}'))
+    assert assisted[0] == "--task" and json.loads(assisted[1])["recovery_assist"] is True
+    assert train.server_args(train.Settings()) == []  # the servers' defaults: the shipped actor's task
 
 
 def test_fine_tuning_from_an_exported_actor_keeps_it_while_the_critics_learn(smoke_run, tmp_path):

@@ -55,7 +55,13 @@ def evaluate_flags(evaluate: Path):
     for line, after in zip(lines, lines[1:]):
         m = OPTION_LINE.match(line)
         if m and m.group(1) not in OWN_FLAGS:  # a long option's help starts on the next line
-            help_text = m.group(4) or (after.strip() if after.startswith("    ") else m.group(1))
+            # CLI11 puts its own notes after the type ("Needs: --x", "in [0 - 360]", "Excludes: --y"); the help proper
+            # is then on the next line, and the note follows it.
+            note = m.group(4) if m.group(4) and re.match(r"(Needs|Excludes|in \[|\[)", m.group(4)) else None
+            own = m.group(4) if m.group(4) and not note else None
+            help_text = own or (after.strip() if after.startswith("    ") else m.group(1))
+            if note:
+                help_text = f"{help_text} ({note})"
             flags.append((m.group(1), m.group(2) is not None, m.group(3) is not None, help_text))
     return flags
 

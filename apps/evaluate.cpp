@@ -16,6 +16,7 @@
 #include "apps/runner/controller.hpp"
 #include "apps/runner/evaluation_merge.hpp"
 #include "apps/runner/evaluation_table.hpp"
+#include "apps/runner/procedure_options.hpp"
 #include "apps/runner/task_options.hpp"
 #include "engine/task/anatomy.hpp"
 
@@ -68,6 +69,7 @@ std::vector<gw::EvaluationRow> rows_to_run(const std::string& rows_filter, const
 struct EvaluateArgs {
   gw::EvaluationOptions o;
   gw::TaskOptions task;
+  gw::ProcedureOptions procedure;  // --reshape-tip, --reshape-tip-length, --step-time-limit
   std::string out_dir = "results", rows_filter, centerlines = "extract", episodes_range;
   std::string controllers = "policy,push-only,scripted-omega,scripted-omega-ccw";
   std::vector<std::string> from_json;
@@ -92,18 +94,7 @@ void add_evaluate_options(CLI::App& app, EvaluateArgs& a) {
   app.add_option("--wire", a.o.wire_path, "guidewire parameter JSON (default: the 0.014\" coronary wire the policies "
                  "were trained with)");
   gw::add_task_options(app, a.task);
-  CLI::Option* reshape_option = app.add_option("--reshape-tip", a.o.reshape_tip_per_mm,
-                 "when a procedure does not reach the target (with --recovery: after its pull-backs), withdraw the wire, "
-                 "reshape its tip to this curvature (1/mm; the wire's own is 0.2) and navigate again from the inlet "
-                 "(docs/recovery.md); the \"with reshape\" figures. 0 = never")
-      ->check(CLI::NonNegativeNumber);
-  app.add_option("--reshape-tip-length", a.o.reshape_tip_length_mm,
-                 "with --reshape-tip: the reshaped tip's length, mm (the bent, softer distal part; the wire's own is 6). "
-                 "0 = the wire's own")
-      ->check(CLI::NonNegativeNumber)
-      ->needs(reshape_option);
-  app.add_option("--step-time-limit", a.o.step_time_limit_s, "end an episode as a timeout when one env step runs longer than this many seconds of wall time (0 = no limit, the default: with a limit an outcome can depend on the machine's load; for surfaces where the contact solver crawls)")
-      ->check(CLI::NonNegativeNumber);
+  gw::add_procedure_options(app, a.procedure);
   app.add_option("--threads", a.o.threads, "episodes run in parallel");
   app.add_option("--rows", a.rows_filter, "only rows whose name contains one of these comma-separated texts (coronary,var1)");
   app.add_option("--out", a.out_dir, "folder for results.md and results.json (both rewritten after every row, so an "
@@ -174,6 +165,9 @@ void parse_episode_range(const std::string& text, gw::EvaluationOptions& o) {
 gw::EvaluationOptions evaluation_options(const EvaluateArgs& a) {
   gw::EvaluationOptions o = a.o;
   o.task = gw::resolve_task_config(a.task);
+  o.reshape_tip_per_mm = a.procedure.reshape_tip_per_mm;
+  o.reshape_tip_length_mm = a.procedure.reshape_tip_length_mm;
+  o.step_time_limit_s = a.procedure.step_time_limit_s;
   if (!a.episodes_range.empty()) parse_episode_range(a.episodes_range, o);
   if (a.centerlines != "extract" && a.centerlines != "truth")
     throw std::invalid_argument("--centerlines must be 'extract' or 'truth', got '" + a.centerlines + "'");

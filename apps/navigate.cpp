@@ -19,6 +19,7 @@
 #include "apps/runner/heart_motion.hpp"
 #include "apps/runner/navigation_anatomy.hpp"
 #include "apps/runner/navigation_outputs.hpp"
+#include "apps/runner/procedure_options.hpp"
 #include "apps/runner/task_options.hpp"
 #include "centerline/extract/target_table.hpp"
 #include "centerline/graph/nearest_target.hpp"
@@ -45,7 +46,7 @@ struct NavigateArgs {
   std::uint64_t seed = 0;
   bool print_json = false, list = false, no_cache = false, scale_given = false;
   gw::TaskOptions task;
-  double reshape_tip = 0.0, reshape_tip_length = 0.0, step_time_limit = 0.0;
+  gw::ProcedureOptions procedure;  // --reshape-tip, --reshape-tip-length, --step-time-limit
   gw::HeartSettings heart;
 };
 
@@ -68,18 +69,7 @@ void add_navigate_options(CLI::App& app, NavigateArgs& a) {
                  "use this centerline file (.json, VMTK .vtp, 3D Slicer .mrk.json) instead of extracting one");
   app.add_option("--wire", a.wire_path, "guidewire parameter JSON (default: 0.014\" coronary wire)");
   gw::add_task_options(app, a.task);
-  CLI::Option* reshape_option = app.add_option("--reshape-tip", a.reshape_tip,
-                 "when the procedure does not reach the target (with --recovery: after its pull-backs), withdraw the wire, "
-                 "reshape its tip to this curvature (1/mm; the wire's own is 0.2) and navigate again from the inlet "
-                 "(docs/recovery.md); the figures under \"reshape\". 0 = never")
-      ->check(CLI::NonNegativeNumber);
-  app.add_option("--reshape-tip-length", a.reshape_tip_length,
-                 "with --reshape-tip: the reshaped tip's length, mm (the bent, softer distal part; the wire's own is 6). "
-                 "0 = the wire's own")
-      ->check(CLI::NonNegativeNumber)
-      ->needs(reshape_option);
-  app.add_option("--step-time-limit", a.step_time_limit, "end an episode as a timeout when one env step runs longer than this many seconds of wall time (0 = no limit, the default: with a limit an outcome can depend on the machine's load; for surfaces where the contact solver crawls)")
-      ->check(CLI::NonNegativeNumber);
+  gw::add_procedure_options(app, a.procedure);
   app.add_option("--heart-rate", a.heart.heart_rate_bpm,
                  "the vessel beats at this rate, bpm (0 = static; docs/beating_heart.md): its wall and centerline "
                  "follow --motion, else the anatomy's own field (STEM.motion.json or the spec's deformation beside the mesh)")
@@ -134,9 +124,10 @@ nlohmann::json navigation_summary(const NavigateArgs& a, const gw::NavigationAna
   summary["task_scale"] = task.courses.at(0).at(0).vessel_scale ? "vessel" : "fixed";  // --task-scale, resolved
   if (config.recovery_attempts > 0) summary["recovery_attempts"] = config.recovery_attempts;
   if (config.recovery_assist) summary["recovery_assist"] = true;
-  if (a.reshape_tip > 0) summary["reshape_tip_per_mm"] = a.reshape_tip;
-  if (a.reshape_tip > 0 && a.reshape_tip_length > 0) summary["reshape_tip_length_mm"] = a.reshape_tip_length;
-  if (a.step_time_limit > 0) summary["step_time_limit_s"] = a.step_time_limit;
+  if (a.procedure.reshape_tip_per_mm > 0) summary["reshape_tip_per_mm"] = a.procedure.reshape_tip_per_mm;
+  if (a.procedure.reshape_tip_per_mm > 0 && a.procedure.reshape_tip_length_mm > 0)
+    summary["reshape_tip_length_mm"] = a.procedure.reshape_tip_length_mm;
+  if (a.procedure.step_time_limit_s > 0) summary["step_time_limit_s"] = a.procedure.step_time_limit_s;
   if (config.action != gw::ActionLayout::kRotation) summary["action_layout"] = gw::action_layout_name(config.action);
   if (!motion_source.empty())
     summary["heart"] = {{"heart_rate_bpm", anatomy.scene->motion ? anatomy.scene->motion->heart_rate_bpm : 0.0},
@@ -214,10 +205,10 @@ int navigate(NavigateArgs a) {
     if (show_progress) std::fprintf(stderr, "\r[navigate] episode %d/%d", done, total);
   };
   gw::TraceOptions trace;
-  trace.step_time_limit_s = a.step_time_limit;
+  trace.step_time_limit_s = a.procedure.step_time_limit_s;
   std::optional<gw::NavigationTask> reshaped;
-  if (a.reshape_tip > 0) {
-    reshaped = gw::make_reshaped_task(task, a.reshape_tip, a.reshape_tip_length);
+  if (a.procedure.reshape_tip_per_mm > 0) {
+    reshaped = gw::make_reshaped_task(task, a.procedure.reshape_tip_per_mm, a.procedure.reshape_tip_length_mm);
     trace.reshaped = &*reshaped;
   }
   trace.wire_shape_every = a.out_dir.empty() ? 0 : gw::wire_shape_stride(anatomy.scene.get(), config.dt_s * config.frame_skip);

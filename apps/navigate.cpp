@@ -90,12 +90,12 @@ void report_anatomy(const NavigateArgs& a, const gw::NavigationAnatomy& nav, con
   // The default wire is a 0.014" coronary wire made for vessels of about 0.8-2 mm radius; in an
   // aorta (radius 10-15 mm) its tip cannot span the lumen to aim at a branch.
   const double inlet_radius = nav.anatomy.graph.inlet.radius;
-  if (a.wire_path.empty() && inlet_radius > gw::TaskConfig{}.wide_vessel_radius_mm)
+  if (a.wire_path.empty() && inlet_radius > config.wide_vessel_radius_mm)
     std::cerr << "note: " << a.anatomy_path << ": the inlet is " << inlet_radius
               << " mm in radius, far above the default 0.014\" coronary wire's range (about 0.8-2 mm); for an aorta "
                  "try --wire "
               << gw::shipped_path("engine/wire/aortic_035_angled.json") << " (0.035\" angled-tip wire)\n";
-  if (config.task_scale == gw::TaskScale::kAuto && inlet_radius > gw::TaskConfig{}.wide_vessel_radius_mm)
+  if (config.task_scale == gw::TaskScale::kAuto && inlet_radius > config.wide_vessel_radius_mm)
     std::cerr << "note: " << a.anatomy_path << ": wide inlet, so a wrong branch counts once the tip is inside it past its "
                  "ostium and the policy acts within 20 mm of the parent's wall (--task-scale vessel; fixed = the "
                  "paper's millimetres; docs/vessel_scale.md)\n";

@@ -41,8 +41,9 @@ CLI::Option* task_switch(CLI::App& app, TaskOptions& o, const std::string& name,
 }
 
 json read_task_json(const std::string& task) {
-  const bool inline_json = task.find_first_not_of(" \t") != std::string::npos && task[task.find_first_not_of(" \t")] == '{';
-  std::string where = inline_json ? "--task" : "--task: " + task;
+  const std::size_t first = task.find_first_not_of(" \t");
+  const bool inline_json = first != std::string::npos && task[first] == '{';
+  const std::string where = inline_json ? "--task" : "--task: " + task;
   try {
     if (inline_json) return json::parse(task);
     std::ifstream in(task);
@@ -127,8 +128,9 @@ TaskConfig resolve_task_config(const TaskOptions& o, const TaskConfig& base) {
     std::string what = e.what();
     // The check names the field; a value given by a flag is named by its flag too (the last one that sets it).
     std::string flag;
+    const std::string given = o.flags.dump();
     for (const auto& [name, key] : o.flag_keys)
-      if (what.find(key) != std::string::npos && o.flags.dump().find("\"" + key + "\"") != std::string::npos) flag = name;
+      if (what.find(key) != std::string::npos && given.find("\"" + key + "\"") != std::string::npos) flag = name;
     if (!flag.empty()) what = flag + ": " + what;
     throw std::invalid_argument(o.task.empty() ? what : "--task " + o.task + " with the task flags: " + what);
   }

@@ -7,9 +7,9 @@
 #include <fstream>
 #include <iostream>
 
-#include "centerline/vessel_tree/anatomy_set.hpp"
-#include "centerline/vessel_tree/generate_anatomy.hpp"
-#include "centerline/vessel_tree/tree_spec.hpp"
+#include "anatomy_gen/anatomy_set.hpp"
+#include "anatomy_gen/generate_anatomy.hpp"
+#include "anatomy_gen/tree_spec.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"Generate a vessel-tree anatomy (mesh + ground-truth centerline) from a JSON spec"};

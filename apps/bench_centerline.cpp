@@ -15,10 +15,10 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "centerline/graph/anatomy_index.hpp"
-#include "centerline/extract/compare_centerlines.hpp"
-#include "centerline/extract/extract_centerline.hpp"
-#include "centerline/extract/intake_surface.hpp"
+#include "base/graph/anatomy_index.hpp"
+#include "centerline/compare_centerlines.hpp"
+#include "centerline/extract_centerline.hpp"
+#include "centerline/intake_surface.hpp"
 #include <sys/resource.h>
 
 namespace {

@@ -4,7 +4,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "apps/server/env_benchmark.hpp"
+#include "lib/server/env_benchmark.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"Benchmark: navigation env steps/s in process vs through the socket"};

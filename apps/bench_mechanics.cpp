@@ -15,7 +15,8 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "engine/mesh/load_mesh.hpp"
+#include "base/mesh/load_mesh.hpp"
+#include "base/util/read_json_file.hpp"
 #include "engine/scene/moving_wall.hpp"
 #include "engine/sim/mechanics_benchmark.hpp"
 
@@ -52,10 +53,7 @@ int main(int argc, char** argv) {
   app.add_option("--motion", motion_path, "cardiac motion JSON (default: the generator's coronary field)");
   CLI11_PARSE(app, argc, argv);
   try {
-    std::ifstream in(stem + ".truth.json");
-    if (!in) throw std::runtime_error(stem + ".truth.json: cannot open");
-    nlohmann::json truth;
-    in >> truth;
+    const nlohmann::json truth = gw::read_json_file(stem + ".truth.json", "truth centerline (bench-mechanics takes a generated anatomy's stem)");
     Eigen::Vector3d inlet, dir;
     for (int i = 0; i < 3; ++i) {
       inlet[i] = truth.at("inlet").at("position").at(i).get<double>();

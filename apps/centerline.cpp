@@ -2,17 +2,17 @@
 //   centerline --anatomy F.stl [--inlet x,y,z] [--scale S] [--out F.json] [--list]
 // Prints the JSON (schema guidewire-nav/centerline/1) on stdout, or writes it to --out;
 // --list prints a table of the numbered targets instead. Results are cached by mesh
-// content hash (see centerline/extract/centerline_cache.hpp for the folder).
+// content hash (see centerline/centerline_cache.hpp for the folder).
 // Bad input: one line "error: FILE: problem" on stderr, exit 1, nothing written.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <iostream>
 #include <sstream>
 
-#include "centerline/extract/centerline_cache.hpp"
-#include "centerline/graph/inlet_ambiguity.hpp"
-#include "centerline/extract/target_table.hpp"
-#include "centerline/graph/centerline_graph.hpp"
+#include "centerline/centerline_cache.hpp"
+#include "base/graph/inlet_ambiguity.hpp"
+#include "centerline/target_table.hpp"
+#include "base/graph/centerline_graph.hpp"
 
 namespace {
 

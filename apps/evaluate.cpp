@@ -12,25 +12,24 @@
 #include <iostream>
 #include <thread>
 
-#include "apps/report/atomic_write.hpp"
-#include "apps/runner/controller.hpp"
-#include "apps/runner/evaluation_merge.hpp"
-#include "apps/runner/evaluation_table.hpp"
-#include "apps/runner/procedure_options.hpp"
-#include "apps/runner/task_options.hpp"
-#include "engine/task/anatomy.hpp"
+#include "lib/report/atomic_write.hpp"
+#include "base/util/read_json_file.hpp"
+#include "lib/runner/controller.hpp"
+#include "lib/runner/evaluation_merge.hpp"
+#include "lib/runner/evaluation_table.hpp"
+#include "lib/runner/procedure_options.hpp"
+#include "lib/runner/task_options.hpp"
+#include "task/anatomy.hpp"
 
 namespace {
 
 // A results.json an earlier run wrote; throws naming the file when it is unreadable or not one.
 nlohmann::json read_results(const std::string& path, const std::string& flag = "--from-json") {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(flag + ": cannot read '" + path + "'");
   nlohmann::json result;
   try {
-    result = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(flag + ": '" + path + "' is not JSON: " + e.what());
+    result = gw::read_json_file(path, "results file");
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(flag + ": " + e.what());
   }
   if (!result.contains("rows") || !result["rows"].is_array())
     throw std::runtime_error(flag + ": '" + path + "' has no \"rows\" array (not an evaluate results.json)");

@@ -1,16 +1,16 @@
 // guidewire-server: serves the navigation environment over TCP, newline-delimited JSON, one
-// environment per connection (protocol in apps/server/env_session.hpp). The first stdout line is
+// environment per connection (protocol in lib/server/env_session.hpp). The first stdout line is
 // {"port": N} (useful with --port 0), then the server runs until SIGINT/SIGTERM.
 #include <CLI/CLI.hpp>
 #include <csignal>
 #include <iostream>
 
-#include "apps/runner/heart_motion.hpp"
-#include "apps/runner/navigation_anatomy.hpp"
-#include "apps/runner/task_options.hpp"
-#include "apps/server/tcp_server.hpp"
-#include "engine/task/navigation_task.hpp"
-#include "engine/task/observation.hpp"
+#include "lib/runner/heart_motion.hpp"
+#include "lib/runner/navigation_anatomy.hpp"
+#include "lib/runner/task_options.hpp"
+#include "lib/server/tcp_server.hpp"
+#include "task/navigation_task.hpp"
+#include "task/observation.hpp"
 
 namespace {
 gw::TcpServer* g_server = nullptr;

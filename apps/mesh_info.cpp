@@ -6,9 +6,9 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "centerline/extract/intake_surface.hpp"
-#include "centerline/vessel_tree/write_stl.hpp"
-#include "engine/mesh/validate_mesh.hpp"
+#include "centerline/intake_surface.hpp"
+#include "anatomy_gen/write_stl.hpp"
+#include "base/mesh/validate_mesh.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"Load a vessel surface mesh (STL/OBJ/PLY), report its validity and the repairs it gets"};

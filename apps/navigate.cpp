@@ -13,18 +13,18 @@
 #include <thread>
 #include <unistd.h>
 
-#include "apps/runner/controller.hpp"
-#include "apps/runner/rotation_schedules.hpp"
-#include "apps/runner/episode_batch.hpp"
-#include "apps/runner/heart_motion.hpp"
-#include "apps/runner/navigation_anatomy.hpp"
-#include "apps/runner/navigation_outputs.hpp"
-#include "apps/runner/procedure_options.hpp"
-#include "apps/runner/task_options.hpp"
-#include "centerline/extract/target_table.hpp"
-#include "centerline/graph/nearest_target.hpp"
-#include "engine/task/navigation_task.hpp"
-#include "engine/task/task_config_json.hpp"
+#include "lib/runner/controller.hpp"
+#include "lib/runner/rotation_schedules.hpp"
+#include "lib/runner/episode_batch.hpp"
+#include "lib/runner/heart_motion.hpp"
+#include "lib/runner/navigation_anatomy.hpp"
+#include "lib/runner/navigation_outputs.hpp"
+#include "lib/runner/procedure_options.hpp"
+#include "lib/runner/task_options.hpp"
+#include "centerline/target_table.hpp"
+#include "base/graph/nearest_target.hpp"
+#include "task/navigation_task.hpp"
+#include "task/task_config_json.hpp"
 #include "engine/wire/wire_params.hpp"
 
 namespace {

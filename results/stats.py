@@ -1,5 +1,5 @@
 """What the results scripts share (standard library only): the Wilson interval (z 1.96; the C++ table's
-apps/runner/success_statistics.hpp uses the exact 1.95996), the exact sign test the table uses, a success-rate cell,
+lib/runner/success_statistics.hpp uses the exact 1.95996), the exact sign test the table uses, a success-rate cell,
 and one column's episodes of an evaluate results.json."""
 import functools
 import json

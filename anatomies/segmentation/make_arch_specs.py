@@ -36,7 +36,7 @@ def plane(s, z, n=0.0):
 
 
 def catmull_rom_point(c, u):
-    """The generator's centripetal Catmull-Rom (centerline/vessel_tree/catmull_rom.cpp) at parameter u."""
+    """The generator's centripetal Catmull-Rom (anatomy_gen/catmull_rom.cpp) at parameter u."""
     n = len(c)
     i = min(max(int(np.floor(u)), 0), n - 2)
     t = min(max(u - i, 0.0), 1.0)

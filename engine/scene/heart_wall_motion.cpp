@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "engine/mesh/load_mesh.hpp"
+#include "base/mesh/load_mesh.hpp"
 #include "engine/scene/wall_motion.hpp"
 
 namespace gw {

@@ -9,18 +9,12 @@
 #include <stdexcept>
 
 #include "engine/scene/wall_motion.hpp"
+#include "base/util/read_json_file.hpp"
 
 namespace gw {
 
 CardiacMotion load_cardiac_motion(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open the motion file");
-  nlohmann::json j;
-  try {
-    in >> j;
-  } catch (const std::exception& e) {
-    throw std::runtime_error(path + ": not valid JSON (" + e.what() + ")");
-  }
+  const nlohmann::json j = read_json_file(path, "motion file");
   if (!j.is_object()) throw std::runtime_error(path + ": the motion file must hold a JSON object");
   static const std::set<std::string> known = {
       "heart_rate_bpm", "systole_fraction", "phase_offset",        "axis_origin",    "axis_direction",

@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "engine/scene/closest_point_triangle.hpp"
+#include "engine/scene/nearest_face.hpp"
 
 namespace gw {
 
@@ -143,17 +144,12 @@ WallDistance wall_distance_among_at(const VesselScene& scene, double t, const Ei
                                     const std::vector<double>* lower_bounds, double moved, int* hint,
                                     const RestPoint* rest, const std::vector<Eigen::Vector4d>* rest_spheres) {
   CurrentWallCache& cache = cache_for(scene, t);
-  WallDistance best;
-  best.signed_distance = std::numeric_limits<double>::infinity();
-  double best_d2 = cutoff * cutoff;
-  double best_reach = std::sqrt(best_d2 * (1 + 1e-12));  // a current bounding sphere farther: skipped
-  double best_cos = -1;
-  Eigen::Vector3d best_diff = Eigen::Vector3d::Zero(), best_n = Eigen::Vector3d::Zero();
-  int best_position = -1;
+  NearestFace best(cutoff);
+  double best_reach = std::sqrt(best.d2 * (1 + 1e-12));  // a current bounding sphere farther: skipped
   // Rest frame: every triangle with a current point within `reach_of` the best distance (plus the tie
-  // tolerance below) has its rest point within `rest_limit` of rest->X.
+  // tolerance of NearestFace) has its rest point within `rest_limit` of rest->X.
   auto reach_of = [&](double d2) { return rest_reach(*rest, std::sqrt(d2 + 2e-12 * (1 + d2))); };
-  double rest_limit = rest ? reach_of(best_d2) : 0.0;
+  double rest_limit = rest ? reach_of(best.d2) : 0.0;
   auto consider = [&](int position) {
     const int f = triangles[position];
     if (rest) {
@@ -168,25 +164,9 @@ WallDistance wall_distance_among_at(const VesselScene& scene, double t, const Ei
     int region = 0;
     const Eigen::Vector3d c = closest_point_on_triangle(p, fd.a, fd.b, fd.c, region);
     const Eigen::Vector3d diff = p - c;
-    const double d2 = diff.squaredNorm();
-    const double cosv = d2 > 0 ? std::abs(diff.dot(fd.n)) / std::sqrt(d2) : 1.0;
-    bool better;
-    if (best.triangle < 0)
-      better = d2 <= cutoff * cutoff;
-    else if (std::abs(d2 - best_d2) <= 1e-12 * (1 + best_d2))
-      better = cosv > best_cos;
-    else
-      better = d2 < best_d2;
-    if (better) {
-      best_d2 = d2;
-      best_cos = cosv;
-      best.triangle = f;
-      best_position = position;
-      best.closest = c;
-      best_diff = diff;
-      best_n = fd.n;
-      best_reach = std::sqrt(best_d2 * (1 + 1e-12));
-      if (rest) rest_limit = reach_of(best_d2);
+    if (best.offer(f, position, c, diff, diff.squaredNorm(), fd.n)) {
+      best_reach = std::sqrt(best.d2 * (1 + 1e-12));
+      if (rest) rest_limit = reach_of(best.d2);
     }
   };
   const int first = hint ? *hint : -1;
@@ -216,33 +196,17 @@ WallDistance wall_distance_among_at(const VesselScene& scene, double t, const Ei
     for (std::size_t i = 0; i < triangles.size(); ++i) {
       if (lower_bounds) {
         const double lb = (*lower_bounds)[i] - moved;
-        if (lb > 0 && lb * lb > best_d2 * (1 + 1e-9) + 1e-18) break;  // sorted: nothing later is closer
+        if (lb > 0 && lb * lb > best.d2 * (1 + 1e-9) + 1e-18) break;  // sorted: nothing later is closer
       }
       if (static_cast<int>(i) != first) consider(static_cast<int>(i));
     }
   }
-  if (hint) *hint = best_position;
-  if (best.triangle < 0) return best;
-  const int f = best.triangle;
-  const Eigen::Vector3d n = best_n;
-  const double dist = std::sqrt(best_d2);
-  best.signed_distance = best_diff.dot(n) <= 0 ? dist : -dist;
-  const std::array<int, 3>& corners = scene.motion->face_vertices[f];
-  const Eigen::Vector3d a = vertex(cache, scene, corners[0]), b = vertex(cache, scene, corners[1]),
-                        c = vertex(cache, scene, corners[2]);
-  const Eigen::Vector3d v0 = b - a, v1 = c - a, v2 = best.closest - a;
-  const double d00 = v0.dot(v0), d01 = v0.dot(v1), d11 = v1.dot(v1), d20 = v2.dot(v0), d21 = v2.dot(v1);
-  const double den = d00 * d11 - d01 * d01;
-  Eigen::Vector3d smooth = n;
-  if (den > 0) {
-    const double wb = (d11 * d20 - d01 * d21) / den, wc = (d00 * d21 - d01 * d20) / den;
-    smooth = (1 - wb - wc) * vertex_normal(cache, scene, corners[0]) + wb * vertex_normal(cache, scene, corners[1]) +
-             wc * vertex_normal(cache, scene, corners[2]);
-    if (smooth.norm() > 1e-9 && smooth.dot(n) > 0) smooth.normalize();
-    else smooth = n;
-  }
-  best.inward = -smooth;
-  return best;
+  if (hint) *hint = best.position;
+  if (best.triangle < 0) return to_wall_distance(best, p, p, p, [](int) { return Eigen::Vector3d::Zero(); });
+  const std::array<int, 3>& corners = scene.motion->face_vertices[best.triangle];
+  return to_wall_distance(best, vertex(cache, scene, corners[0]), vertex(cache, scene, corners[1]),
+                          vertex(cache, scene, corners[2]),
+                          [&](int k) -> Eigen::Vector3d { return vertex_normal(cache, scene, corners[k]); });
 }
 
 bool wall_rest_point_at(const VesselScene& scene, double t, const Eigen::Vector3d& p, const Eigen::Vector3d* guess,

@@ -7,7 +7,7 @@
 // point, plus a centre vertex per cap). Throws std::invalid_argument for bad inputs.
 #include <Eigen/Core>
 
-#include "engine/mesh/triangle_mesh.hpp"
+#include "base/mesh/triangle_mesh.hpp"
 
 namespace gw {
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "engine/mesh/triangle_mesh.hpp"
+#include "base/mesh/triangle_mesh.hpp"
 
 namespace gw {
 

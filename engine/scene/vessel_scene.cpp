@@ -12,6 +12,7 @@
 #include <string>
 
 #include "engine/scene/closest_point_triangle.hpp"
+#include "engine/scene/nearest_face.hpp"
 
 namespace gw {
 
@@ -125,53 +126,31 @@ double nearest_triangle(const VesselScene& scene, const Eigen::Vector3d& p, int&
 WallDistance wall_distance_among(const VesselScene& scene, const Eigen::Vector3d& p, const std::vector<int>& triangles,
                                  double cutoff, const std::vector<double>* lower_bounds, double moved, int* hint,
                                  const std::vector<Eigen::Vector4d>* bounds) {
-  WallDistance best;
-  best.signed_distance = std::numeric_limits<double>::infinity();
-  double best_d2 = cutoff * cutoff;
-  double best_cos = -1;
-  Eigen::Vector3d best_diff = Eigen::Vector3d::Zero();
+  NearestFace best(cutoff);
   const auto& V = scene.mesh.V;
   const auto& F = scene.mesh.F;
-  int best_position = -1;
   auto consider = [&](int position) {
     const int f = triangles[position];
     // Early out: the triangle lies inside its bounding sphere.
     const Eigen::Vector4d& sphere = bounds ? (*bounds)[2 * position] : scene.face_spheres[f];
     const double centre_distance = (p - sphere.head<3>()).norm();
     const double dc = centre_distance - sphere[3];
-    if (dc > 0 && dc * dc > best_d2 * (1 + 1e-12)) return;
+    if (dc > 0 && dc * dc > best.d2 * (1 + 1e-12)) return;
     // Second early out: the triangle lies in its plane, |n.p - n.a| <= its distance. Taken only where
-    // the triangle is then farther than the best by more than the tie tolerance below (1e-12 (1 + d2)),
-    // however the two distances round: the slack covers the normal's error (face_planes: below 1e-10
-    // of |p - a| <= centre_distance + radius) and the products' rounding, the margins the tie band. So
-    // the triangle would not have replaced the best; skipping it leaves the answer as it was.
+    // the triangle is then farther than the best by more than the tie tolerance of NearestFace
+    // (1e-12 (1 + d2)), however the two distances round: the slack covers the normal's error
+    // (face_planes: below 1e-10 of |p - a| <= centre_distance + radius) and the products' rounding, the
+    // margins the tie band. So the triangle would not have replaced the best; skipping it leaves the
+    // answer as it was.
     const Eigen::Vector4d& plane = bounds ? (*bounds)[2 * position + 1] : scene.face_planes[f];
     const double slack = 1e-9 * (1 + centre_distance + sphere[3]) + 1e-13 * std::abs(plane[3]);
     const double dp = std::abs(plane.head<3>().dot(p) - plane[3]) - slack;
-    if (dp > 0 && dp * dp > best_d2 * (1 + 1e-9) + 1e-11) return;
+    if (dp > 0 && dp * dp > best.d2 * (1 + 1e-9) + 1e-11) return;
     int region = 0;
     const Eigen::Matrix3d& tri = scene.face_corners[f];
     const Eigen::Vector3d c = closest_point_on_triangle(p, tri.col(0), tri.col(1), tri.col(2), region);
     const Eigen::Vector3d diff = p - c;
-    const double d2 = diff.squaredNorm();
-    const Eigen::Vector3d n = scene.face_normals.row(f).transpose();
-    // Ties (a shared edge or vertex): the face whose plane is most aligned with p - c decides the side.
-    const double cosv = d2 > 0 ? std::abs(diff.dot(n)) / std::sqrt(d2) : 1.0;
-    bool better;
-    if (best.triangle < 0)
-      better = d2 <= cutoff * cutoff;
-    else if (std::abs(d2 - best_d2) <= 1e-12 * (1 + best_d2))
-      better = cosv > best_cos;
-    else
-      better = d2 < best_d2;
-    if (better) {
-      best_d2 = d2;
-      best_cos = cosv;
-      best.triangle = f;
-      best_position = position;
-      best.closest = c;
-      best_diff = diff;
-    }
+    best.offer(f, position, c, diff, diff.squaredNorm(), scene.face_normals.row(f).transpose());
   };
   // The hinted triangle first (usually the last query's closest): a tight best distance from the start
   // lets the bounding-sphere test reject nearly every other triangle.
@@ -180,32 +159,15 @@ WallDistance wall_distance_among(const VesselScene& scene, const Eigen::Vector3d
   for (std::size_t i = 0; i < triangles.size(); ++i) {
     if (lower_bounds) {
       const double lb = (*lower_bounds)[i] - moved;
-      if (lb > 0 && lb * lb > best_d2 * (1 + 1e-9) + 1e-18) break;  // sorted: nothing later is closer
+      if (lb > 0 && lb * lb > best.d2 * (1 + 1e-9) + 1e-18) break;  // sorted: nothing later is closer
     }
     if (static_cast<int>(i) != first) consider(static_cast<int>(i));
   }
-  if (hint) *hint = best_position;
-  if (best.triangle < 0) return best;
+  if (hint) *hint = best.position;
+  if (best.triangle < 0) return to_wall_distance(best, p, p, p, [](int) { return Eigen::Vector3d::Zero(); });
   const int f = best.triangle;
-  const Eigen::Vector3d n = scene.face_normals.row(f).transpose();
-  const double dist = std::sqrt(best_d2);
-  const bool inside = best_diff.dot(n) <= 0;
-  best.signed_distance = inside ? dist : -dist;
-  // Barycentric coordinates of the closest point, then the interpolated vertex normal there.
-  const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
-  const Eigen::Vector3d v0 = b - a, v1 = c - a, v2 = best.closest - a;
-  const double d00 = v0.dot(v0), d01 = v0.dot(v1), d11 = v1.dot(v1), d20 = v2.dot(v0), d21 = v2.dot(v1);
-  const double den = d00 * d11 - d01 * d01;
-  Eigen::Vector3d smooth = n;
-  if (den > 0) {
-    const double wb = (d11 * d20 - d01 * d21) / den, wc = (d00 * d21 - d01 * d20) / den;
-    smooth = (1 - wb - wc) * scene.vertex_normals.row(F(f, 0)).transpose() +
-             wb * scene.vertex_normals.row(F(f, 1)).transpose() + wc * scene.vertex_normals.row(F(f, 2)).transpose();
-    if (smooth.norm() > 1e-9 && smooth.dot(n) > 0) smooth.normalize();
-    else smooth = n;
-  }
-  best.inward = -smooth;
-  return best;
+  return to_wall_distance(best, V.row(F(f, 0)).transpose(), V.row(F(f, 1)).transpose(), V.row(F(f, 2)).transpose(),
+                          [&](int k) -> Eigen::Vector3d { return scene.vertex_normals.row(F(f, k)).transpose(); });
 }
 
 WallDistance wall_distance(const VesselScene& scene, const Eigen::Vector3d& p) {

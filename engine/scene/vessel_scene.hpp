@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "engine/mesh/triangle_mesh.hpp"
+#include "base/mesh/triangle_mesh.hpp"
 #include "engine/scene/triangle_grid.hpp"
 
 namespace gw {

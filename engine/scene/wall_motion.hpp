@@ -7,7 +7,7 @@
 // Sources of D (WallMotionKind):
 //   rigid    D(t) = velocity t + amplitude sin(2 pi phase(t))              (tests: a carried/shaken tube)
 //   cardiac  D(X, s) with s = cardiac_activation(phase(t)) in [0, 1], the map of the anatomy generator
-//            (centerline/vessel_tree/deformation.hpp) plus a rotation and a translation:
+//            (anatomy_gen/deformation.hpp) plus a rotation and a translation:
 //              y = X - c, h = y.a, y_r = y - h a,  theta = s (twist h + rotation)
 //              x = c + R_a(theta) (1 - s rc) y_r + (1 - s as) h a + s T
 //            rc = contraction_mm / reference radius, as = shortening_mm / reference length; with a
@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/mesh/triangle_mesh.hpp"
+#include "base/mesh/triangle_mesh.hpp"
 
 namespace gw {
 

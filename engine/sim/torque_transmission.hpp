@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/mesh/triangle_mesh.hpp"
+#include "base/mesh/triangle_mesh.hpp"
 #include "engine/sim/step.hpp"
 #include "engine/wire/wire_params.hpp"
 

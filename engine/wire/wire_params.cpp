@@ -1,4 +1,5 @@
 #include "engine/wire/wire_params.hpp"
+#include "base/util/read_json_file.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -54,14 +55,7 @@ void check_wire_params(const WireParams& p, const std::string& where) {
 }
 
 WireParams load_wire_params(const std::string& json_path) {
-  std::ifstream in(json_path);
-  if (!in) throw std::runtime_error(json_path + ": cannot open wire parameter file");
-  nlohmann::json j;
-  try {
-    in >> j;
-  } catch (const std::exception& e) {
-    throw std::runtime_error(json_path + ": invalid JSON: " + e.what());
-  }
+  const nlohmann::json j = read_json_file(json_path, "wire parameter file");
   if (!j.is_object()) throw std::runtime_error(json_path + ": expected a JSON object");
   WireParams p;
   auto get = [&](const char* name, double& field) {

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "centerline/graph/anatomy_index.hpp"
-#include "centerline/graph/centerline_graph.hpp"
-#include "engine/mesh/triangle_mesh.hpp"
+#include "base/graph/anatomy_index.hpp"
+#include "base/graph/centerline_graph.hpp"
+#include "base/mesh/triangle_mesh.hpp"
 
 namespace gw::test {
 

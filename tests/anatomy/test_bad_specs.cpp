@@ -1,9 +1,9 @@
 // Bad specs are refused with a message that names the problem.
 #include <catch2/catch.hpp>
 
-#include "centerline/vessel_tree/generate_anatomy.hpp"
-#include "centerline/vessel_tree/tree_geometry.hpp"
-#include "centerline/vessel_tree/tree_spec.hpp"
+#include "anatomy_gen/generate_anatomy.hpp"
+#include "anatomy_gen/tree_geometry.hpp"
+#include "anatomy_gen/tree_spec.hpp"
 
 namespace {
 // Geometry checks only (no meshing): fast.

@@ -5,9 +5,9 @@
 #include <set>
 
 #include "anatomy_helpers.hpp"
-#include "centerline/graph/centerline_graph.hpp"
-#include "engine/mesh/load_mesh.hpp"
-#include "engine/mesh/validate_mesh.hpp"
+#include "base/graph/centerline_graph.hpp"
+#include "base/mesh/load_mesh.hpp"
+#include "base/mesh/validate_mesh.hpp"
 
 using gw::test::committed_anatomies;
 

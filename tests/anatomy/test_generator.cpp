@@ -3,11 +3,11 @@
 #include <map>
 
 #include "anatomy_helpers.hpp"
-#include "centerline/vessel_tree/deformation.hpp"
-#include "centerline/vessel_tree/generate_anatomy.hpp"
-#include "centerline/vessel_tree/tree_geometry.hpp"
-#include "centerline/vessel_tree/truth_graph.hpp"
-#include "engine/mesh/validate_mesh.hpp"
+#include "anatomy_gen/deformation.hpp"
+#include "anatomy_gen/generate_anatomy.hpp"
+#include "anatomy_gen/tree_geometry.hpp"
+#include "anatomy_gen/truth_graph.hpp"
+#include "base/mesh/validate_mesh.hpp"
 
 namespace {
 // A trunk with a side branch leaving mid-way and a Y at its end: 3 targets, 2 bifurcations.

@@ -7,8 +7,8 @@
 #include <sys/wait.h>
 
 #include "anatomy_helpers.hpp"
-#include "centerline/vessel_tree/anatomy_set.hpp"
-#include "centerline/vessel_tree/generate_anatomy.hpp"
+#include "anatomy_gen/anatomy_set.hpp"
+#include "anatomy_gen/generate_anatomy.hpp"
 
 namespace {
 struct Run {

@@ -6,7 +6,7 @@
 #include <string>
 #include <sys/wait.h>
 
-#include "centerline/graph/centerline_graph.hpp"
+#include "base/graph/centerline_graph.hpp"
 #include "tube_mesh.hpp"
 #include "../mesh/mesh_files.hpp"
 

@@ -1,10 +1,10 @@
 // What extraction refuses, repairs, and how it says so.
 #include <catch2/catch.hpp>
 
-#include "centerline/extract/centerline_cache.hpp"
-#include "centerline/extract/compare_centerlines.hpp"
-#include "centerline/extract/extract_centerline.hpp"
-#include "centerline/extract/target_table.hpp"
+#include "centerline/centerline_cache.hpp"
+#include "centerline/compare_centerlines.hpp"
+#include "centerline/extract_centerline.hpp"
+#include "centerline/target_table.hpp"
 #include "tube_mesh.hpp"
 #include "../mesh/mesh_files.hpp"
 

@@ -1,5 +1,5 @@
 // The allocation scope that makes CGAL's skeletonisation independent of the process's past
-// (centerline/extract/deterministic_heap.hpp).
+// (centerline/deterministic_heap.hpp).
 #include <catch2/catch.hpp>
 
 #include <cstdint>
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "centerline/extract/deterministic_heap.hpp"
+#include "centerline/deterministic_heap.hpp"
 
 using gw::DeterministicHeapScope;
 

@@ -3,9 +3,9 @@
 // one; a graph that moved by a fraction of a millimetre changed whole episodes of the table).
 #include <catch2/catch.hpp>
 
-#include "centerline/graph/anatomy_index.hpp"
-#include "centerline/extract/extract_centerline.hpp"
-#include "engine/mesh/load_mesh.hpp"
+#include "base/graph/anatomy_index.hpp"
+#include "centerline/extract_centerline.hpp"
+#include "base/mesh/load_mesh.hpp"
 
 using namespace gw;
 

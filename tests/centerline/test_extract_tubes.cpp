@@ -2,9 +2,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "centerline/extract/compare_centerlines.hpp"
-#include "centerline/extract/extract_centerline.hpp"
-#include "centerline/extract/polyline_tools.hpp"
+#include "centerline/compare_centerlines.hpp"
+#include "centerline/extract_centerline.hpp"
+#include "centerline/polyline_tools.hpp"
 #include "tube_mesh.hpp"
 
 using namespace gw;

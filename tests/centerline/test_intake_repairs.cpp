@@ -4,12 +4,12 @@
 
 #include <cmath>
 
-#include "centerline/extract/compare_centerlines.hpp"
-#include "centerline/extract/extract_centerline.hpp"
-#include "centerline/extract/intake_surface.hpp"
-#include "centerline/extract/prepare_surface.hpp"
-#include "engine/mesh/load_mesh.hpp"
-#include "engine/mesh/validate_mesh.hpp"
+#include "centerline/compare_centerlines.hpp"
+#include "centerline/extract_centerline.hpp"
+#include "centerline/intake_surface.hpp"
+#include "centerline/prepare_surface.hpp"
+#include "base/mesh/load_mesh.hpp"
+#include "base/mesh/validate_mesh.hpp"
 #include "tube_mesh.hpp"
 #include "../mesh/mesh_files.hpp"
 

@@ -3,11 +3,11 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "centerline/extract/compare_centerlines.hpp"
-#include "centerline/extract/extract_centerline.hpp"
-#include "centerline/extract/merged_lumen_axis.hpp"
-#include "centerline/extract/vessel_wall.hpp"
-#include "centerline/vessel_tree/generate_anatomy.hpp"
+#include "centerline/compare_centerlines.hpp"
+#include "centerline/extract_centerline.hpp"
+#include "centerline/merged_lumen_axis.hpp"
+#include "centerline/vessel_wall.hpp"
+#include "anatomy_gen/generate_anatomy.hpp"
 
 using Eigen::Vector3d;
 

@@ -5,12 +5,12 @@
 #include <cmath>
 #include <string>
 
-#include "centerline/extract/compare_centerlines.hpp"
-#include "centerline/extract/cross_section.hpp"
-#include "centerline/extract/extract_centerline.hpp"
-#include "centerline/extract/open_cross_section.hpp"
-#include "centerline/extract/vessel_wall.hpp"
-#include "centerline/vessel_tree/generate_anatomy.hpp"
+#include "centerline/compare_centerlines.hpp"
+#include "centerline/cross_section.hpp"
+#include "centerline/extract_centerline.hpp"
+#include "centerline/open_cross_section.hpp"
+#include "centerline/vessel_wall.hpp"
+#include "anatomy_gen/generate_anatomy.hpp"
 #include "tube_mesh.hpp"
 
 using namespace gw;

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <functional>
 
-#include "centerline/extract/skeleton_tree.hpp"
+#include "centerline/skeleton_tree.hpp"
 
 using namespace gw;
 

@@ -2,8 +2,8 @@
 // end's coordinates so that extraction noise of a tenth of a millimetre cannot renumber targets.
 #include <catch2/catch.hpp>
 
-#include "centerline/graph/centerline_graph.hpp"
-#include "centerline/graph/inlet_ambiguity.hpp"
+#include "base/graph/centerline_graph.hpp"
+#include "base/graph/inlet_ambiguity.hpp"
 
 using namespace gw;
 

@@ -7,9 +7,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "centerline/extract/cross_section.hpp"
-#include "centerline/extract/estimate_wall_noise.hpp"
-#include "centerline/extract/vessel_wall.hpp"
+#include "centerline/cross_section.hpp"
+#include "centerline/estimate_wall_noise.hpp"
+#include "centerline/vessel_wall.hpp"
 #include "tube_mesh.hpp"
 
 using namespace gw;

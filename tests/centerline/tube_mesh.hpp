@@ -6,8 +6,8 @@
 #include <random>
 #include <vector>
 
-#include "centerline/graph/centerline_graph.hpp"
-#include "engine/mesh/triangle_mesh.hpp"
+#include "base/graph/centerline_graph.hpp"
+#include "base/mesh/triangle_mesh.hpp"
 
 namespace gw::test {
 

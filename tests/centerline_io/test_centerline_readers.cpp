@@ -10,11 +10,11 @@
 #include <limits>
 #include <string>
 
-#include "centerline/graph/centerline_graph.hpp"
-#include "centerline/graph/declared_coordinate_space.hpp"
-#include "centerline/graph/nearest_target.hpp"
-#include "centerline/graph/read_slicer_markups.hpp"
-#include "centerline/graph/read_vmtk_centerline.hpp"
+#include "base/graph/centerline_graph.hpp"
+#include "base/graph/declared_coordinate_space.hpp"
+#include "base/graph/nearest_target.hpp"
+#include "base/graph/read_slicer_markups.hpp"
+#include "base/graph/read_vmtk_centerline.hpp"
 
 using namespace gw;
 

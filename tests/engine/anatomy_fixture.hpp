@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "engine/mesh/load_mesh.hpp"
+#include "base/mesh/load_mesh.hpp"
 #include "engine/scene/vessel_scene.hpp"
 
 namespace gw::test {

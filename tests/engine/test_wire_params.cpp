@@ -38,6 +38,6 @@ TEST_CASE("bad wire parameter files are refused with the file and field named", 
   CHECK_THROWS_WITH(load_wire_params(write_temp("{\"diameter_mm\": \"thin\"}")), Catch::Contains("must be a number"));
   CHECK_THROWS_WITH(load_wire_params(write_temp("{\"diametre_mm\": 0.3}")), Catch::Contains("unknown field 'diametre_mm'"));
   CHECK_THROWS_WITH(load_wire_params(write_temp("[1, 2]")), Catch::Contains("expected a JSON object"));
-  CHECK_THROWS_WITH(load_wire_params(write_temp("{oops")), Catch::Contains("invalid JSON"));
+  CHECK_THROWS_WITH(load_wire_params(write_temp("{oops")), Catch::Contains("not valid JSON"));
   CHECK_THROWS_WITH(make_wire_model(default_wire_params(), 0.0), Catch::Contains("dt"));
 }

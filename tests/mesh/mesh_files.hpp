@@ -6,7 +6,7 @@
 #include <fstream>
 #include <string>
 
-#include "engine/mesh/triangle_mesh.hpp"
+#include "base/mesh/triangle_mesh.hpp"
 
 namespace gw::test {
 

@@ -4,8 +4,8 @@
 #include <filesystem>
 #include <limits>
 
-#include "engine/mesh/load_mesh.hpp"
-#include "engine/mesh/validate_mesh.hpp"
+#include "base/mesh/load_mesh.hpp"
+#include "base/mesh/validate_mesh.hpp"
 #include "mesh_files.hpp"
 
 using namespace gw;

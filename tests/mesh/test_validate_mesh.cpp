@@ -3,8 +3,8 @@
 #include <cmath>
 #include <limits>
 
-#include "engine/mesh/validate_mesh.hpp"
-#include "engine/mesh/weld_vertices.hpp"
+#include "base/mesh/validate_mesh.hpp"
+#include "base/mesh/weld_vertices.hpp"
 #include "mesh_files.hpp"
 
 using namespace gw;

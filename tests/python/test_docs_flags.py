@@ -14,7 +14,7 @@ The convention in docs/commands.md, which this test enforces:
 - The flags the doc gives a command are every `--flag` written in its section (synopsis block, prose,
   tables), except those in a code span or a code-block line that starts with another command's name
   (`guidewire-server --step-cutoff S` inside navigate's section documents guidewire-server, not navigate).
-- The flags apps/runner/task_options.cpp declares once for navigate, evaluate and guidewire-server
+- The flags lib/runner/task_options.cpp declares once for navigate, evaluate and guidewire-server
   (TASK_OPTION_APPS) are documented once, in the section headed "Task options"; it counts for each of
   those three.
 - A group of a command's --help titled "OTHER's flags ..." (gw-cluster's "evaluate's flags (`evaluate --help`),

@@ -37,7 +37,7 @@ def test_bad_cases_and_schedules_are_refused():
 
 @pytest.mark.parametrize("name", sorted(feasibility.SCHEDULES))
 def test_each_schedule_acts_as_its_cpp_namesake(navigate_episode, name):
-    """The schedules are written twice (here and apps/runner/rotation_schedules.cpp): replaying the
+    """The schedules are written twice (here and lib/runner/rotation_schedules.cpp): replaying the
     observations of a C++ episode through the Python rule must give the C++ actions, step by step."""
     observations, actions, omega = navigate_episode(name)
     assert len(actions) > 100  # frame 0 is the reset (no action); frame k+1 holds the action taken on frame k

@@ -1,83 +1,128 @@
-"""The layers of docs/architecture.md ("Include direction"), enforced: every `#include "folder/..."`
-of the C++ libraries must reach a folder its own folder may use, and CGAL stays inside the centerline
-extraction and the generator's .cpp files (slow to compile; no header may pull it in).
+"""The layers of docs/architecture.md, enforced. The "Include direction" table there is read as it is:
+every quoted `#include` of every C++ source outside tests/ is resolved to the file it names (a bare
+name in the including file's own folder, else a path from the repository root) and the folder of that
+file must be the including folder or one its table row lists. The table must name exactly the
+folders that hold sources and exactly what each reaches (a dependency nobody uses is not allowed
+either), its rows must go down the layers (no cycle, no top-level folder reaching one above it), and
+CGAL stays inside the .cpp files of the extraction and the generator.
 
-A new dependency that breaks a layer fails here; widening ALLOWED is a design change that belongs in
-docs/architecture.md first."""
+A new dependency is a design change: edit the table in docs/architecture.md first."""
 import re
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[2]
-LIBRARIES = ("engine", "centerline", "policy", "apps")
-
-# Each library folder and the folders (besides itself) it may include, lowest layer first.
-BASE = {"engine/mesh", "centerline/graph", "engine/solver", "engine/wire", "policy"}
-MECHANICS = {"engine/mesh", "engine/solver", "engine/wire", "engine/scene", "engine/contact", "engine/sim"}
-ALLOWED = {
-    "engine/mesh": set(), "centerline/graph": set(), "engine/solver": set(), "engine/wire": set(), "policy": set(),
-    "engine/scene": {"engine/mesh"},
-    "engine/contact": {"engine/mesh", "engine/solver", "engine/wire", "engine/scene"},
-    "engine/sim": {"engine/mesh", "engine/solver", "engine/wire", "engine/scene", "engine/contact"},
-    "engine/task": MECHANICS | {"centerline/graph"},                 # gets a CenterlineGraph, not the extraction
-    "centerline/extract": {"centerline/graph", "engine/mesh"},       # not the generator
-    "centerline/vessel_tree": {"centerline/graph", "engine/mesh"},   # not the extraction
-    "apps/report": BASE | MECHANICS | {"engine/task"},
-    "apps/server": BASE | MECHANICS | {"engine/task", "apps/report"},  # not the runner
-    "apps/runner": BASE | MECHANICS | {"engine/task", "centerline/extract", "centerline/vessel_tree", "apps/report"},
-}
+SOURCE_TOPS = ("base", "engine", "task", "centerline", "anatomy_gen", "policy", "lib", "apps")
+# The picture of docs/architecture.md, lowest first: a folder may reach only its own or lower ranks.
+RANK = {"base": 0, "engine": 1, "task": 2, "centerline": 3, "anatomy_gen": 3, "policy": 3, "lib": 4, "apps": 5}
+CGAL_FOLDERS = ("centerline", "anatomy_gen")
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 CGAL = re.compile(r"^\s*#\s*include\s+<CGAL/", re.M)
+ROW = re.compile(r"^\|\s*`([^`]+)`\s*\|(.*)\|\s*$")
 
 
-def library_folder(path):
-    """'engine/sim' for engine/sim/step.cpp; 'apps' for an executable apps/navigate.cpp."""
-    parts = path.relative_to(REPO).parts
-    return "/".join(parts[:2]) if len(parts) > 2 else parts[0]
+def read_table(doc=None):
+    """{folder: set of folders it may include} from the table under "## Include direction"."""
+    text = (doc or REPO / "docs" / "architecture.md").read_text()
+    section = text.split("## Include direction", 1)[1].split("\n## ", 1)[0]
+    table = {}
+    for line in section.splitlines():
+        m = ROW.match(line.strip())
+        if m:
+            table[m.group(1)] = set(re.findall(r"`([^`]+)`", m.group(2)))
+    assert table, "docs/architecture.md: no include table under '## Include direction'"
+    return table
 
 
-def sources():
-    for top in LIBRARIES:
-        for p in sorted((REPO / top).rglob("*")):
+def sources(repo):
+    for top in SOURCE_TOPS:
+        for p in sorted((repo / top).rglob("*")):
             if p.suffix in (".hpp", ".cpp", ".h") and p.is_file():
                 yield p
 
 
-def test_every_library_folder_has_a_layer():
-    folders = {library_folder(p) for p in sources()} - {"apps"}
-    assert folders <= set(ALLOWED), f"folders without a layer in ALLOWED: {sorted(folders - set(ALLOWED))}"
+def folder_of(path, repo):
+    return path.parent.relative_to(repo).as_posix()
 
 
-def test_includes_go_down_the_layers():
-    bad = []
-    for p in sources():
-        own = library_folder(p)
-        if own == "apps":  # the executables may use every library
-            continue
+def reached(repo):
+    """{folder: {folder it includes: [example include]}} and the includes that resolve to no file."""
+    reach, unresolved = {}, []
+    for p in sources(repo):
+        own = folder_of(p, repo)
+        reach.setdefault(own, {})
         for target in INCLUDE.findall(p.read_text(errors="replace")):
-            parts = target.split("/")
-            if len(parts) < 3 or parts[0] not in LIBRARIES:
-                continue  # a header of the same folder by bare name, or not ours
-            folder = "/".join(parts[:2])
-            if folder != own and folder not in ALLOWED[own]:
-                bad.append(f"{p.relative_to(REPO)} includes {target} ({own} may not use {folder})")
-    assert not bad, "includes against the layers (docs/architecture.md):\n" + "\n".join(bad)
+            hit = next((c for c in (p.parent / target, repo / target) if c.is_file()), None)
+            if hit is None:
+                unresolved.append(f"{p.relative_to(repo)}: #include \"{target}\"")
+                continue
+            other = folder_of(hit.resolve(), repo.resolve())
+            if other != own:
+                reach[own].setdefault(other, f"{p.relative_to(repo)} includes {target}")
+    return reach, unresolved
+
+
+def check(repo=REPO, doc=None):
+    table = read_table(doc)
+    reach, unresolved = reached(repo)
+    problems = [f"unresolved include (not a file of ours): {u}" for u in unresolved]
+    problems += [f"{f}: a folder with sources and no row in the table" for f in sorted(set(reach) - set(table))]
+    problems += [f"{f}: a table row for a folder with no sources" for f in sorted(set(table) - set(reach))]
+    for own, targets in sorted(reach.items()):
+        allowed = table.get(own, set())
+        if own == "apps":
+            continue  # "any folder above"
+        for other, example in sorted(targets.items()):
+            if other not in allowed:
+                problems.append(f"{example} ({own} may not use {other})")
+        for unused in sorted(allowed - set(targets)):
+            problems.append(f"{own}: the table allows {unused}, which no include of {own} uses")
+    return problems
+
+
+def test_includes_match_the_table_exactly():
+    problems = check()
+    assert not problems, "includes against docs/architecture.md's table:\n" + "\n".join(problems)
+
+
+def test_the_table_goes_down_the_layers():
+    table = read_table()
+    bad = [f"{f} -> {t}" for f, ts in table.items() for t in ts - {"any folder above"}
+           if RANK[t.split("/")[0]] > RANK[f.split("/")[0]]]
+    assert not bad, "table rows reaching a higher layer: " + ", ".join(bad)
+    # no cycle among folders (the engine's and lib's sub-folders rank among themselves this way)
+    seen, done = set(), set()
+
+    def visit(f, path):
+        assert f not in seen or f in done, "include cycle: " + " -> ".join(path + [f])
+        if f in done:
+            return
+        seen.add(f)
+        for t in table.get(f, set()) - {"any folder above"}:
+            visit(t, path + [f])
+        done.add(f)
+
+    for f in table:
+        visit(f, [])
 
 
 def test_cgal_stays_in_the_extraction_and_generator_sources():
-    bad = [str(p.relative_to(REPO)) for p in sources() if CGAL.search(p.read_text(errors="replace"))
-           and not (p.suffix == ".cpp" and library_folder(p) in ("centerline/extract", "centerline/vessel_tree"))]
-    assert not bad, "CGAL included outside centerline/extract and centerline/vessel_tree .cpp files: " + ", ".join(bad)
+    bad = [str(p.relative_to(REPO)) for p in sources(REPO) if CGAL.search(p.read_text(errors="replace"))
+           and not (p.suffix == ".cpp" and folder_of(p, REPO).split("/")[0] in CGAL_FOLDERS)]
+    assert not bad, "CGAL included outside centerline/ and anatomy_gen/ .cpp files: " + ", ".join(bad)
 
 
-def test_the_check_sees_a_violation(tmp_path, monkeypatch):
-    """The scan itself works: a header of the mechanics that includes the task is reported."""
-    fake = tmp_path / "engine" / "sim" / "bad.hpp"
-    fake.parent.mkdir(parents=True)
-    fake.write_text('#pragma once\n#include "engine/task/episode.hpp"\n')
-    monkeypatch.setattr(__import__(__name__), "REPO", tmp_path)
-    try:
-        test_includes_go_down_the_layers()
-    except AssertionError as e:
-        assert "engine/sim may not use engine/task" in str(e)
-    else:
-        raise AssertionError("a forbidden include was not reported")
+def test_the_check_sees_a_violation(tmp_path):
+    """The scan itself works: an engine header that includes the task, a two-part include
+    included, is reported; so are an unresolved include and a stale table row."""
+    doc = tmp_path / "architecture.md"
+    doc.write_text("## Include direction\n| folder | may include |\n|---|---|\n"
+                   "| `engine/sim` | nothing |\n| `task` | `engine/sim` |\n| `policy` | nothing |\n")
+    (tmp_path / "engine" / "sim").mkdir(parents=True)
+    (tmp_path / "task").mkdir()
+    (tmp_path / "task" / "episode.hpp").write_text("#pragma once\n")
+    (tmp_path / "engine" / "sim" / "bad.hpp").write_text('#pragma once\n#include "task/episode.hpp"\n#include "nowhere.hpp"\n')
+    problems = "\n".join(check(tmp_path, doc))
+    assert "engine/sim may not use task" in problems
+    assert 'unresolved include (not a file of ours): engine/sim/bad.hpp: #include "nowhere.hpp"' in problems
+    assert "task: the table allows engine/sim, which no include of task uses" in problems
+    assert "policy: a table row for a folder with no sources" in problems

@@ -1,7 +1,7 @@
 """No tracked file names a folder of the machine it was made on (issue 61, item 6).
 
 Results, shipped actors, scripts and docs record paths relative to the repository root (evaluate and
-navigate do so themselves: `recorded_path` in apps/runner); a run's own scratch output goes under the
+navigate do so themselves: `recorded_path` in lib/runner); a run's own scratch output goes under the
 ignored runs/ or .cache/. What counts as a machine path: an absolute path whose first folder is one of
 MACHINE_ROOTS (home and scratch folders, mounts, the folder this project was first run in), or a Windows
 user folder. System paths are not machine paths and are not matched: /usr/bin/env in a shebang,

@@ -1,6 +1,6 @@
 #pragma once
 // Reads a PNG back to 8-bit RGB pixels with libpng's simplified API (png_image), independently of
-// how apps/report/png_encoder.cpp drives libpng's writer: the tests compare pixels, not bytes.
+// how lib/report/png_encoder.cpp drives libpng's writer: the tests compare pixels, not bytes.
 #include <png.h>
 
 #include <cstdint>

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "apps/report/trajectory.hpp"
-#include "centerline/graph/centerline_graph.hpp"
-#include "engine/mesh/triangle_mesh.hpp"
+#include "lib/report/trajectory.hpp"
+#include "base/graph/centerline_graph.hpp"
+#include "base/mesh/triangle_mesh.hpp"
 
 namespace gw::test {
 

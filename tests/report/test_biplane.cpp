@@ -6,10 +6,10 @@
 #include <limits>
 #include <random>
 
-#include "apps/report/atomic_write.hpp"
-#include "apps/report/biplane_render.hpp"
-#include "apps/report/palette.hpp"
-#include "engine/mesh/load_mesh.hpp"
+#include "lib/report/atomic_write.hpp"
+#include "lib/report/biplane_render.hpp"
+#include "lib/report/palette.hpp"
+#include "base/mesh/load_mesh.hpp"
 #include "png_decode.hpp"
 #include "report_scenes.hpp"
 

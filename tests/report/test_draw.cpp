@@ -2,8 +2,8 @@
 // at least 2 px wide, text lands where asked.
 #include <catch2/catch.hpp>
 
-#include "apps/report/bitmap_font.hpp"
-#include "apps/report/draw.hpp"
+#include "lib/report/bitmap_font.hpp"
+#include "lib/report/draw.hpp"
 
 using namespace gw;
 

@@ -8,8 +8,8 @@
 #include <random>
 #include <string>
 
-#include "apps/report/atomic_write.hpp"
-#include "apps/report/png_encoder.hpp"
+#include "lib/report/atomic_write.hpp"
+#include "lib/report/png_encoder.hpp"
 #include "png_decode.hpp"
 #include "report_scenes.hpp"
 

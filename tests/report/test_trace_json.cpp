@@ -7,8 +7,8 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
-#include "apps/report/atomic_write.hpp"
-#include "apps/report/trace_json.hpp"
+#include "lib/report/atomic_write.hpp"
+#include "lib/report/trace_json.hpp"
 #include "report_scenes.hpp"
 
 using namespace gw;

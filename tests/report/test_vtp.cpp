@@ -1,6 +1,6 @@
 // VTK XML PolyData files (zlib-compressed appended binary): well-formed XML, counts in the Piece
 // header matching the data arrays, indices in range, the documented arrays present; the project's
-// own .vtp reader (centerline/graph/vtp_polylines) reads them back; .pvd time series.
+// own .vtp reader (base/graph/vtp_polylines) reads them back; .pvd time series.
 #include <zlib.h>
 
 #include <catch2/catch.hpp>
@@ -12,9 +12,9 @@
 #include <pugixml.hpp>
 #include <sstream>
 
-#include "apps/report/atomic_write.hpp"
-#include "apps/report/vtp_writer.hpp"
-#include "centerline/graph/vtp_polylines.hpp"
+#include "lib/report/atomic_write.hpp"
+#include "lib/report/vtp_writer.hpp"
+#include "base/graph/vtp_polylines.hpp"
 #include "report_scenes.hpp"
 
 using namespace gw;

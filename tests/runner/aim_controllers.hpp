@@ -3,8 +3,8 @@
 // turned towards the wrong branch (omega -> +1) or away from it (omega -> -1), under the constant push.
 #include <string>
 
-#include "apps/runner/controller.hpp"
-#include "engine/task/observation.hpp"
+#include "lib/runner/controller.hpp"
+#include "task/observation.hpp"
 
 namespace gwtest {
 

@@ -2,15 +2,15 @@
 // speed, rotated at the proximal end). An anatomy that breaks that caps its row of the results table
 // whatever the controller does, as t3's steep branch on the inner side of the access bend once did
 // (anatomies/README.md, "Reachable by design"). So every target of every anatomy in the table must be
-// reached by some rotation schedule of apps/runner/rotation_schedules.hpp from the first three seeds,
+// reached by some rotation schedule of lib/runner/rotation_schedules.hpp from the first three seeds,
 // on the centerlines the table uses (extracted with CGAL MCF, cached on disk after the first run).
 #include <catch2/catch.hpp>
 #include <sstream>
 
-#include "apps/runner/evaluation_table.hpp"
-#include "apps/runner/reachability.hpp"
-#include "engine/task/anatomy.hpp"
-#include "engine/task/navigation_task.hpp"
+#include "lib/runner/evaluation_table.hpp"
+#include "lib/runner/reachability.hpp"
+#include "task/anatomy.hpp"
+#include "task/navigation_task.hpp"
 #include "engine/wire/wire_params.hpp"
 
 TEST_CASE("every target of the results table's anatomies can be reached by rotation alone", "[runner][anatomy]") {

@@ -6,8 +6,8 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 
-#include "apps/runner/controller.hpp"
-#include "apps/runner/evaluation_table.hpp"
+#include "lib/runner/controller.hpp"
+#include "lib/runner/evaluation_table.hpp"
 
 TEST_CASE("the shipped base-only actor reaches its training bifurcation where push-only does not",
           "[runner][policy]") {

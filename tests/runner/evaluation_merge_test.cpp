@@ -4,9 +4,9 @@
 #include <utility>
 #include <vector>
 
-#include "apps/runner/episode_batch.hpp"
-#include "apps/runner/evaluation_merge.hpp"
-#include "apps/runner/evaluation_table.hpp"
+#include "lib/runner/episode_batch.hpp"
+#include "lib/runner/evaluation_merge.hpp"
+#include "lib/runner/evaluation_table.hpp"
 
 namespace {
 

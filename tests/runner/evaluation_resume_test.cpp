@@ -3,9 +3,9 @@
 #include <catch2/catch.hpp>
 #include <stdexcept>
 
-#include "apps/runner/controller.hpp"
-#include "apps/runner/evaluation_progress.hpp"
-#include "apps/runner/evaluation_table.hpp"
+#include "lib/runner/controller.hpp"
+#include "lib/runner/evaluation_progress.hpp"
+#include "lib/runner/evaluation_table.hpp"
 
 namespace {
 

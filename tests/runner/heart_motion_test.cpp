@@ -1,14 +1,14 @@
-// The beating heart's settings (issue 36 item 4, apps/runner/heart_motion.hpp): which cardiac motion an
+// The beating heart's settings (issue 36 item 4, lib/runner/heart_motion.hpp): which cardiac motion an
 // anatomy gets, that 0 bpm changes nothing, a motion frozen in a deformed shape takes the centerline with
 // it, and evaluate's beating rows (item 5) come after the paper's rows, which stay as they were.
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
 
-#include "apps/runner/evaluation_table.hpp"
-#include "apps/runner/heart_motion.hpp"
+#include "lib/runner/evaluation_table.hpp"
+#include "lib/runner/heart_motion.hpp"
 #include "engine/scene/moving_wall.hpp"
-#include "engine/task/navigation_task.hpp"
+#include "task/navigation_task.hpp"
 #include "engine/wire/wire_params.hpp"
 
 namespace {

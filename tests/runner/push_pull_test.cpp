@@ -7,13 +7,13 @@
 #include <filesystem>
 #include <fstream>
 
-#include "apps/runner/controller.hpp"
-#include "apps/runner/navigation_anatomy.hpp"
-#include "apps/runner/run_episode.hpp"
-#include "engine/task/episode.hpp"
-#include "engine/task/navigation_task.hpp"
-#include "engine/task/observation.hpp"
-#include "engine/task/reward.hpp"
+#include "lib/runner/controller.hpp"
+#include "lib/runner/navigation_anatomy.hpp"
+#include "lib/runner/run_episode.hpp"
+#include "task/episode.hpp"
+#include "task/navigation_task.hpp"
+#include "task/observation.hpp"
+#include "task/reward.hpp"
 #include "engine/wire/wire_params.hpp"
 #include "tests/runner/aim_controllers.hpp"
 

@@ -6,10 +6,10 @@
 #include <catch2/catch.hpp>
 #include <algorithm>
 
-#include "apps/runner/navigation_anatomy.hpp"
-#include "engine/task/episode.hpp"
-#include "engine/task/navigation_task.hpp"
-#include "engine/task/observation.hpp"
+#include "lib/runner/navigation_anatomy.hpp"
+#include "task/episode.hpp"
+#include "task/navigation_task.hpp"
+#include "task/observation.hpp"
 #include "engine/wire/wire_params.hpp"
 #include "tests/runner/aim_controllers.hpp"
 

@@ -7,13 +7,13 @@
 #include <filesystem>
 #include <limits>
 
-#include "apps/report/trace_json.hpp"
-#include "apps/runner/controller.hpp"
-#include "apps/runner/episode_batch.hpp"
-#include "apps/runner/navigation_anatomy.hpp"
-#include "apps/runner/navigation_outputs.hpp"
-#include "apps/runner/run_episode.hpp"
-#include "engine/task/navigation_task.hpp"
+#include "lib/report/trace_json.hpp"
+#include "lib/runner/controller.hpp"
+#include "lib/runner/episode_batch.hpp"
+#include "lib/runner/navigation_anatomy.hpp"
+#include "lib/runner/navigation_outputs.hpp"
+#include "lib/runner/run_episode.hpp"
+#include "task/navigation_task.hpp"
 #include "engine/wire/wire_params.hpp"
 
 namespace {

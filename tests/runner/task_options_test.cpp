@@ -1,12 +1,12 @@
-// The task settings' command line (apps/runner/task_options.hpp): --task then the flags, in that order, one
+// The task settings' command line (lib/runner/task_options.hpp): --task then the flags, in that order, one
 // surface for navigate, evaluate and guidewire-server.
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 
-#include "apps/runner/task_options.hpp"
-#include "engine/task/task_config_json.hpp"
+#include "lib/runner/task_options.hpp"
+#include "task/task_config_json.hpp"
 
 namespace {
 

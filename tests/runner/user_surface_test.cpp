@@ -4,11 +4,11 @@
 #include <filesystem>
 
 #include "../mesh/mesh_files.hpp"
-#include "apps/runner/controller.hpp"
-#include "apps/runner/episode_batch.hpp"
-#include "apps/runner/navigation_anatomy.hpp"
-#include "engine/mesh/load_mesh.hpp"
-#include "engine/task/navigation_task.hpp"
+#include "lib/runner/controller.hpp"
+#include "lib/runner/episode_batch.hpp"
+#include "lib/runner/navigation_anatomy.hpp"
+#include "base/mesh/load_mesh.hpp"
+#include "task/navigation_task.hpp"
 #include "engine/wire/wire_params.hpp"
 
 namespace {

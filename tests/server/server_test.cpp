@@ -6,10 +6,10 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "apps/server/tcp_server.hpp"
+#include "lib/server/tcp_server.hpp"
 #include "tests/server/socket_client.hpp"
 #include "tests/task/hand_made_graphs.hpp"
-#include "engine/task/task_config_json.hpp"
+#include "task/task_config_json.hpp"
 
 using nlohmann::json;
 

@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "engine/task/anatomy.hpp"
+#include "task/anatomy.hpp"
 
 namespace fs = std::filesystem;
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstring>
 
-#include "engine/task/episode.hpp"
-#include "engine/task/reward.hpp"
+#include "task/episode.hpp"
+#include "task/reward.hpp"
 #include "tests/task/hand_made_graphs.hpp"
 
 using Approx = Catch::Detail::Approx;

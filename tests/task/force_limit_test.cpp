@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "engine/task/episode.hpp"
+#include "task/episode.hpp"
 
 using Approx = Catch::Detail::Approx;
 

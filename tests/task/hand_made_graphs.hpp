@@ -2,7 +2,7 @@
 // Small centerline graphs built by hand, for geometry tests that need no mesh.
 #include <cmath>
 
-#include "centerline/graph/centerline_graph.hpp"
+#include "base/graph/centerline_graph.hpp"
 
 namespace gwtest {
 

@@ -4,9 +4,9 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "engine/task/bifurcation_omega.hpp"
-#include "engine/task/course.hpp"
-#include "engine/task/observation.hpp"
+#include "task/bifurcation_omega.hpp"
+#include "task/course.hpp"
+#include "task/observation.hpp"
 #include "tests/task/hand_made_graphs.hpp"
 
 using Approx = Catch::Detail::Approx;

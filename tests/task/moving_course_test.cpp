@@ -8,8 +8,8 @@
 
 #include "engine/scene/moving_wall.hpp"
 #include "engine/scene/swept_tube_mesh.hpp"
-#include "engine/task/episode.hpp"
-#include "engine/task/graph_motion.hpp"
+#include "task/episode.hpp"
+#include "task/graph_motion.hpp"
 #include "tests/task/hand_made_graphs.hpp"
 
 namespace {

@@ -1,8 +1,8 @@
-// Task settings as JSON (engine/task/task_config_json.hpp): a round trip gives the same settings, a partial object
+// Task settings as JSON (task/task_config_json.hpp): a round trip gives the same settings, a partial object
 // changes only its keys, and every bad input is refused naming its key.
 #include <catch2/catch.hpp>
 
-#include "engine/task/task_config_json.hpp"
+#include "task/task_config_json.hpp"
 
 namespace {
 

@@ -4,10 +4,10 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "engine/task/course.hpp"
-#include "engine/task/observation.hpp"
-#include "engine/task/polyline.hpp"
-#include "engine/task/reward.hpp"
+#include "task/course.hpp"
+#include "task/observation.hpp"
+#include "task/polyline.hpp"
+#include "task/reward.hpp"
 #include "tests/task/hand_made_graphs.hpp"
 
 using Approx = Catch::Detail::Approx;

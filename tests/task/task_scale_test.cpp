@@ -4,10 +4,10 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "engine/task/anatomy.hpp"
-#include "engine/task/branch_lumen.hpp"
-#include "engine/task/course.hpp"
-#include "engine/task/wrong_branch_entered.hpp"
+#include "task/anatomy.hpp"
+#include "task/branch_lumen.hpp"
+#include "task/course.hpp"
+#include "task/wrong_branch_entered.hpp"
 #include "tests/task/hand_made_graphs.hpp"
 
 using Approx = Catch::Detail::Approx;

@@ -5,7 +5,7 @@
 #include <cstring>
 #include <thread>
 
-#include "engine/task/episode.hpp"
+#include "task/episode.hpp"
 
 namespace {
 const std::string kIndex = std::string(GW_SOURCE_DIR) + "/anatomies/index.json";

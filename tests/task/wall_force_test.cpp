@@ -3,8 +3,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "engine/task/episode.hpp"
-#include "engine/task/wall_force.hpp"
+#include "task/episode.hpp"
+#include "task/wall_force.hpp"
 
 using Approx = Catch::Detail::Approx;
 

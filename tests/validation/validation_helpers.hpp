@@ -10,7 +10,7 @@
 #include <map>
 #include <vector>
 
-#include "engine/mesh/triangle_mesh.hpp"
+#include "base/mesh/triangle_mesh.hpp"
 #include "engine/scene/swept_tube_mesh.hpp"
 #include "engine/scene/vessel_scene.hpp"
 #include "engine/sim/step.hpp"

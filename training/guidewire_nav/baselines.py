@@ -17,7 +17,7 @@ import numpy as np
 
 from guidewire_nav.env import GuidewireEnv
 
-# The scripted omega rule, the one Python implementation (C++: scripted_omega_action, apps/runner/controller.hpp,
+# The scripted omega rule, the one Python implementation (C++: scripted_omega_action, lib/runner/controller.hpp,
 # the same threshold): turn at full rate while the tip bends less than 18 degrees short of straight away from the
 # wrong branch (omega > release), then hold. Used by OmegaController and the aim-* schedules of feasibility.py.
 SCRIPTED_OMEGA_RELEASE = -0.95
@@ -48,7 +48,7 @@ class OmegaController:
 
     omega = k_p . w_p is +1 when the tip bends towards the wrong branch and -1 when it bends away.
     Turning one way at a constant rate sweeps the bend round until omega drops to `release`. The same
-    rule as the C++ `scripted-omega` controller of navigate and evaluate (apps/runner/controller.cpp),
+    rule as the C++ `scripted-omega` controller of navigate and evaluate (lib/runner/controller.cpp),
     so a number from here and one from the results table mean the same baseline. omega has no side, so
     the rule turns one fixed way; `OmegaControllerCCW` is the C++ `scripted-omega-ccw`, turning the other."""
 

@@ -9,7 +9,7 @@ got) and talks to it over a TCP socket with the newline-delimited JSON protocol 
     env = GuidewireEnv(options={"anatomy": "t1_straight_y", "target": 2})
 
 The task is the server's (``server_args=["--task", FILE_OR_JSON]`` and the task flags, docs/task_settings.md; the
-spec's ``task`` holds all of it). Observation (the spec's ``obs_layout``, engine/task/observation.hpp): by default
+spec's ``task`` holds all of it). Observation (the spec's ``obs_layout``, task/observation.hpp): by default
 "guidewire-nav/obs/3", the shipped actor's, 12 float32 values: theta_t (3), theta_{t-n dt} (3), lambda_t,
 lambda_{t-n dt}, a_t, omega (in the approach plane), s, omega_side (omega's sine). The paper's "guidewire-nav/obs/1"
 (11 values, omega in the correct branch's normal plane): ``server_args=["--task", "training/tasks/paper.json"]``
@@ -18,7 +18,7 @@ lambda_{t-n dt}, a_t, omega (in the approach plane), s, omega_side (omega's sine
 records which one it was trained on.  Action (the spec's ``action_layout``): one
 float in [-1, 1], the proximal rotation rate as a fraction of the maximum ("guidewire-nav/act/1", paper Eq. 3's
 reward with the task's sigmoid); with ``--push-pull`` two, rotation and insertion speed ("guidewire-nav/act/2",
-engine/task/reward.hpp).
+task/reward.hpp).
 Info after a step: the server's fields (anatomy, target, success, wrong_branch, stuck, step_limit, ...)
 and ``is_success`` (= success; the name SB3 reads).
 
@@ -46,7 +46,7 @@ import guidewire_nav
 
 PROTOCOL = "guidewire-nav/protocol/1"
 # The observation layout is the server's (spec: "obs_layout" and observation_space.names; C++
-# ObservationLayout, engine/task/observation_layout.hpp): obs/1, 11 values, the paper's omega; obs/3: omega in the
+# ObservationLayout, task/observation_layout.hpp): obs/1, 11 values, the paper's omega; obs/3: omega in the
 # approach plane and its sine (12 values); obs/4 and obs/6: obs/3 with combined or k-way junctions; obs/5: obs/3 with
 # the push/pull entries (14 values). The client reads what it needs (omega's index) from the names and keeps no copy
 # of the layouts.

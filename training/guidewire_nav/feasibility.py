@@ -15,7 +15,7 @@ Schedules (omega = observation 9; +1 = tip bent towards the wrong branch):
   wiggle               a = sin(0.3 k), sweeping back and forth
 A case counts as reachable when any schedule reaches it from any of the seeds.
 
-The C++ side has the same family (apps/runner/rotation_schedules.hpp): `evaluate` probes the targets
+The C++ side has the same family (lib/runner/rotation_schedules.hpp): `evaluate` probes the targets
 no controller of a row reached with it, and `navigate --controller spin+1` runs one. Keep the two in step:
 tests/python/test_feasibility.py replays a C++ episode of each schedule through the rule here.
 """

@@ -1,0 +1,238 @@
+#include "centerline/extract_centerline.hpp"
+#include "base/util/median.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <sstream>
+#include <stdexcept>
+#include <tuple>
+
+#include "centerline/estimate_wall_noise.hpp"
+#include "centerline/junction_centre.hpp"
+#include "centerline/merge_close_junctions.hpp"
+#include "centerline/mcf_skeleton.hpp"
+#include "centerline/prepare_surface.hpp"
+#include "centerline/refine_branch.hpp"
+#include "centerline/skeleton_tree.hpp"
+#include "centerline/straighten_junction_links.hpp"
+#include "centerline/vessel_wall.hpp"
+
+namespace gw {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Typical radius of a chain near its end `at_start`: median over the half next to it.
+double end_radius(const RefinedBranch& b, bool at_start) {
+  const size_t half = std::max<size_t>(1, b.radii.size() / 2);
+  std::vector<double> r;
+  if (at_start) r.assign(b.radii.begin(), b.radii.begin() + static_cast<long>(half));
+  else r.assign(b.radii.end() - static_cast<long>(half), b.radii.end());
+  return r.empty() ? 0.0 : median(r);
+}
+
+// The vessel radius of the thinnest chain of `tree`: the smallest median wall distance of a chain's points.
+double thinnest_chain_radius(const SkeletonTree& tree, const VesselWall& wall) {
+  double thinnest = std::numeric_limits<double>::infinity();
+  for (const auto& c : tree.chains) {
+    std::vector<double> r;
+    for (const auto& p : c.points) r.push_back(wall.distance(p));
+    thinnest = std::min(thinnest, r.empty() ? 0.0 : median(r));
+  }
+  return thinnest;
+}
+
+}  // namespace
+
+CenterlineGraph extract_centerline(const TriangleMesh& mesh, const CenterlineOptions& opt, CenterlineStats* stats_out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const ClosedSurface closed = close_surface(mesh);
+  CenterlineStats stats;
+  CenterlineGraph g = extract_centerline(closed, opt, &stats);
+  stats.input_faces = mesh.F.rows();
+  stats.seconds_prepare = seconds_since(t0) - stats.seconds_skeleton - stats.seconds_graph;  // closing included
+  if (stats_out) *stats_out = stats;
+  return g;
+}
+
+CenterlineGraph extract_centerline(const ClosedSurface& closed, const CenterlineOptions& opt, CenterlineStats* stats_out) {
+  if (!(opt.spacing > 0) || !(opt.edges_per_radius > 0))
+    throw std::invalid_argument("centerline options: spacing and edges_per_radius must be positive");
+  CenterlineStats stats;
+  stats.input_faces = closed.mesh.F.rows();
+  auto t0 = std::chrono::steady_clock::now();
+
+  // 1-2. A closed surface, remeshed to a size tied to the vessel radius.
+  stats.capped_holes = static_cast<int>(closed.caps.size());
+  stats.dropped_components = closed.dropped_components;
+  stats.mean_radius = closed.mean_radius();
+  stats.repairs = closed.repairs;
+  // A vessel a few hundredths of a millimetre wide is a mesh in metres (or cm): every
+  // tolerance below is in millimetres, so refuse rather than return nonsense.
+  if (stats.mean_radius < 0.05) {
+    std::ostringstream msg;
+    msg << "vessel radius is about " << stats.mean_radius
+        << " mm: the mesh is probably not in millimetres (use --scale, e.g. 1000 for metres)";
+    throw std::runtime_error(msg.str());
+  }
+  // Edge length tied to the radius, but never so short that MCF gets more than
+  // `max_skeleton_faces` (an equilateral triangle of edge e has area 0.433 e^2).
+  const double finest = std::sqrt(closed.area / (0.433 * std::max(1000, opt.max_skeleton_faces)));
+  double edge = std::max(stats.mean_radius / opt.edges_per_radius, finest);
+  stats.seconds_prepare = seconds_since(t0);
+
+  // 3-4. MCF skeleton of the remeshed surface, cleaned into a tree of chains; the wall of the
+  // (un-remeshed) closed input is the reference.
+  const VesselWall wall(closed.mesh);
+  std::vector<Eigen::Vector3d> caps;
+  for (const auto& c : closed.caps) caps.push_back(c.centre);
+  SkeletonCleanup cleanup;
+  cleanup.spur_factor = opt.spur_factor;
+  cleanup.merge_factor = opt.merge_factor;
+  const auto skeleton_tree = [&] {
+    t0 = std::chrono::steady_clock::now();
+    const TriangleMesh coarse = remesh_surface(closed.mesh, edge);
+    stats.skeleton_faces = coarse.F.rows();
+    stats.seconds_prepare += seconds_since(t0);
+    t0 = std::chrono::steady_clock::now();
+    const RawSkeleton raw = mcf_skeleton(coarse);
+    stats.seconds_skeleton += seconds_since(t0);
+    SkeletonTree tree =
+        clean_skeleton(raw, [&](const Eigen::Vector3d& p) { return wall.distance(p); }, caps, cleanup);
+    if (tree.chains.empty()) throw std::runtime_error("the skeleton has no branch");
+    return tree;
+  };
+  SkeletonTree tree = skeleton_tree();
+  // A branch far thinner than the mean radius (the great vessels off an aortic arch: 2.5 times) gets
+  // one or two edges across at that edge length, and MCF blurs its origin into its neighbour's.
+  const double thin = thinnest_chain_radius(tree, wall);
+  const double fine = std::max(2 * M_PI * thin / opt.edges_around_thinnest, finest);
+  if (fine < edge) {
+    edge = fine;
+    tree = skeleton_tree();
+    stats.skeleton_passes = 2;
+  }
+  t0 = std::chrono::steady_clock::now();
+
+  // 6 (before 5: refinement does not depend on direction). Terminal ends are free.
+  BranchRefinement refinement;
+  refinement.spacing = opt.spacing;
+  refinement.smoothing_iterations = opt.smoothing_iterations;
+  // A segmentation's voxel staircase: the section tests allow for it (0 on a smooth wall).
+  std::vector<std::vector<Eigen::Vector3d>> chain_points;
+  for (const auto& c : tree.chains) chain_points.push_back(c.points);
+  refinement.wall_noise = estimate_wall_noise(chain_points, wall, opt.spacing);
+  stats.wall_noise = refinement.wall_noise;
+  std::vector<RefinedBranch> refined;
+  std::vector<Eigen::Vector3d> nodes;
+  std::vector<int> degree;
+  const auto refine_and_recentre = [&] {
+    degree = tree.degree();
+    refined.clear();
+    for (const auto& c : tree.chains)
+      refined.push_back(refine_branch(c.points, degree[c.a] == 1, degree[c.b] == 1, wall, refinement));
+    nodes = tree.nodes;
+    recentre_junctions(tree, nodes, refined, wall, opt.spacing, 6.0, refinement.wall_noise);
+    straighten_junction_links(tree, refined, opt.spacing);
+  };
+  refine_and_recentre();
+  // A trifurcation is two skeleton junctions that re-centring puts within a radius of each other:
+  // one junction with three exits (merge_close_junctions.hpp).
+  while (merge_close_junctions(tree, nodes, refined, opt.merge_factor)) refine_and_recentre();
+
+  // 5. Inlet: the terminal nearest the given point, else the one on the widest branch
+  // (ties: lowest x, y, z, so the choice is deterministic).
+  int inlet_node = -1;
+  std::tuple<double, double, double, double> best{0, 0, 0, 0};
+  for (size_t i = 0; i < tree.chains.size(); ++i) {
+    const auto& c = tree.chains[i];
+    for (bool at_start : {true, false}) {
+      const int node = at_start ? c.a : c.b;
+      if (degree[node] != 1) continue;
+      const Eigen::Vector3d end = at_start ? refined[i].points.front() : refined[i].points.back();
+      const double score = opt.inlet ? -(end - *opt.inlet).norm() : end_radius(refined[i], at_start);
+      const std::tuple<double, double, double, double> key{score, -end.x(), -end.y(), -end.z()};
+      if (inlet_node < 0 || key > best) inlet_node = node, best = key;
+    }
+  }
+  if (inlet_node < 0) throw std::runtime_error("the skeleton has no terminal to enter from");
+
+  // Walk the tree from the inlet so every branch runs distally.
+  CenterlineGraph g;
+  std::vector<int> arriving(tree.nodes.size(), -1);
+  std::vector<char> visited(tree.nodes.size(), 0), used(tree.chains.size(), 0);
+  std::queue<int> queue;
+  queue.push(inlet_node);
+  visited[inlet_node] = 1;
+  std::vector<int> bifurcation_of(tree.nodes.size(), -1);
+  while (!queue.empty()) {
+    const int v = queue.front();
+    queue.pop();
+    for (size_t i = 0; i < tree.chains.size(); ++i) {
+      const auto& c = tree.chains[i];
+      if (used[i] || (c.a != v && c.b != v)) continue;
+      used[i] = 1;
+      const int far = c.a == v ? c.b : c.a;
+      if (visited[far]) continue;
+      visited[far] = 1;
+      // A terminal chain that re-centring shrank to a stub (its junction moved onto the vessel axes
+      // and the chain was cut back to there) is a spur of the skeleton, not a vessel. Dropped only
+      // where the junction keeps two other children, so that it stays a bifurcation.
+      if (degree[far] == 1 && degree[v] >= 4 && polyline_length(refined[i].points) <
+          opt.spur_factor * *std::max_element(refined[i].radii.begin(), refined[i].radii.end())) {
+        continue;
+      }
+      CenterlineBranch branch;
+      branch.id = static_cast<int>(g.branches.size());
+      branch.parent = arriving[v];
+      branch.points = refined[i].points;
+      branch.radii = refined[i].radii;
+      if (c.a != v) {
+        std::reverse(branch.points.begin(), branch.points.end());
+        std::reverse(branch.radii.begin(), branch.radii.end());
+      }
+      if (branch.parent >= 0) {
+        if (bifurcation_of[v] < 0) {
+          Bifurcation b;
+          b.id = static_cast<int>(g.bifurcations.size());
+          b.position = nodes[v];
+          b.parent = branch.parent;
+          bifurcation_of[v] = b.id;
+          g.bifurcations.push_back(b);
+        }
+        g.bifurcations[bifurcation_of[v]].children.push_back(branch.id);
+      }
+      arriving[far] = branch.id;
+      g.branches.push_back(std::move(branch));
+      queue.push(far);
+    }
+  }
+  const CenterlineBranch& root = g.branches.front();
+  g.inlet.id = 0;
+  g.inlet.position = root.points.front();
+  g.inlet.branch = 0;
+  g.inlet.radius = root.radii.front();
+  // Direction into the vessel: over about two radii of the root branch.
+  const double ahead = 2.0 * std::max(root.radii.front(), opt.spacing);
+  Eigen::Vector3d towards = root.points.back();
+  double run = 0.0;
+  for (size_t i = 1; i < root.points.size(); ++i) {
+    run += (root.points[i] - root.points[i - 1]).norm();
+    if (run >= ahead) {
+      towards = root.points[i];
+      break;
+    }
+  }
+  if ((towards - root.points.front()).norm() > 0) g.inlet_direction = (towards - root.points.front()).normalized();
+  number_targets(g);
+  stats.seconds_graph = seconds_since(t0);
+  if (stats_out) *stats_out = stats;
+  return g;
+}
+
+}  // namespace gw

@@ -1,0 +1,54 @@
+#pragma once
+// An anatomy as the task sees it: the vessel wall (VesselScene) and its centerline graph.
+// Loaded from the fixed layout anatomies/<set>/<name>/<name>.{stl,truth.json} listed in
+// anatomies/index.json, from explicit paths, or built in memory from any CenterlineGraph.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "base/graph/centerline_graph.hpp"
+#include "engine/scene/vessel_scene.hpp"
+#include "task/polyline.hpp"
+
+namespace gw {
+
+struct Anatomy {
+  std::string name;
+  std::string mesh_path;                       // empty when built in memory
+  CenterlineGraph graph;
+  std::vector<Polyline> branch_lines;          // branch_lines[b] = graph.branches[b].points
+  std::shared_ptr<const VesselScene> scene;    // nullptr = free space (no wall)
+};
+
+// Wraps a graph (and optionally a scene). Throws std::invalid_argument when the graph has no
+// targets or a branch with fewer than two distinct points.
+Anatomy make_anatomy(const std::string& name, const CenterlineGraph& graph, std::shared_ptr<const VesselScene> scene);
+
+// Loads and validates the mesh (load_valid_mesh), builds its scene and reads the truth graph.
+// Throws std::runtime_error "<file>: <problem>".
+Anatomy load_anatomy(const std::string& name, const std::string& mesh_path, const std::string& truth_path);
+
+struct AnatomySource {
+  std::string name, mesh, truth;  // absolute or working-directory-relative paths
+};
+
+// Resolves `spec`, a comma-separated list whose items are each
+//   - a set name of the index ("train", "test", "sensitivity"): every anatomy of that set,
+//   - an anatomy name of the index ("t1_straight_y"),
+//   - a mesh path (.stl/.obj/.ply; the truth is <stem>.truth.json beside it) or a .truth.json path.
+// Index paths are relative to the repository root (the index's parent folder's parent).
+// Throws std::runtime_error naming the item that matches nothing (and the index file).
+std::vector<AnatomySource> resolve_anatomy_sources(const std::string& spec, const std::string& index_path);
+
+// resolve_anatomy_sources + load_anatomy for each.
+std::vector<Anatomy> load_anatomies(const std::string& spec, const std::string& index_path);
+
+// anatomies/index.json of the source tree this library was built from,
+// overridden by the environment variable GW_ANATOMY_INDEX when set.
+std::string default_anatomy_index();
+
+// The items of a comma list ("t1, t2,,t3"), trimmed, empty ones dropped: --anatomies, and the apps'
+// other list flags (--rows, --controllers).
+std::vector<std::string> split_commas(const std::string& spec);
+
+}  // namespace gw

@@ -1,0 +1,26 @@
+// Stage step_reward and force_cost (episode_stages.hpp): the env step's reward.
+#include <algorithm>
+
+#include "task/episode_stages.hpp"
+#include "task/reward.hpp"
+
+namespace gw {
+
+double force_cost(const TaskConfig& c, const PhysicsSummary& physics) {
+  return c.reward_force_per_N * 1e-3 * physics.peak.total_mN;  // 0: the paper's reward
+}
+
+double step_reward(const NavigationTask& task, EpisodeState& s, const StepCommand& command, bool in_wrong_branch) {
+  const TaskConfig& c = task.config;
+  if (c.action != ActionLayout::kRotationInsertion)
+    return navigation_reward(s.obs[obs_index::kOmega], s.obs[obs_index::kLambda], command.rotation, c.reward);
+  // New depth: how far this step's command took the wire past its deepest so far, in full-speed steps (the
+  // commands, not the measured insertion, so that the constant push gives exactly 1).
+  s.depth.pushed_steps += command.insertion;
+  const double new_depth = std::clamp(s.depth.pushed_steps - s.depth.deepest_pushed_steps, 0.0, 1.0);
+  s.depth.deepest_pushed_steps = std::max(s.depth.deepest_pushed_steps, s.depth.pushed_steps);
+  return push_pull_reward(s.obs[obs_index::kOmega], command.omega_before, s.obs[obs_index::kLambda], command.rotation,
+                          new_depth, in_wrong_branch, c.reward_wrong_branch, c.reward_time_per_step, c.reward);
+}
+
+}  // namespace gw

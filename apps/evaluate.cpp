@@ -105,6 +105,17 @@ void add_evaluate_options(CLI::App& app, EvaluateArgs& a) {
                  "probe targets no controller reached with 8 rotation schedules from this many seeds (0 = skip)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--planned-seeds", a.o.planned_seeds,
+                 "plan every target of each row with the procedure planner from up to this many seeds (docs/planning.md; "
+                 "0 = skip, the default): the row's \"planned\" figure")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--plan-budget", a.o.plan.max_env_steps, "with --planned-seeds: env steps one plan's search may simulate")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--plan-force-limit", a.o.plan.force_limit_N,
+                 "with --planned-seeds: the plans' tip-force budget, N")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   app.add_option("--controllers", a.controllers,
                  "comma-separated columns: policy, push-only, scripted-omega, scripted-omega-ccw (the scripted "
                  "rule turning the other way)");

@@ -20,6 +20,9 @@
 #include "lib/runner/navigation_anatomy.hpp"
 #include "lib/runner/navigation_outputs.hpp"
 #include "lib/runner/procedure_options.hpp"
+#include "lib/runner/replay_controller.hpp"
+#include "plan/plan_json.hpp"
+#include "base/util/read_json_file.hpp"
 #include "lib/runner/task_options.hpp"
 #include "centerline/target_table.hpp"
 #include "base/graph/nearest_target.hpp"
@@ -40,7 +43,7 @@ Eigen::Vector3d parse_point(const std::string& text, const std::string& flag = "
 // What the command line asks for.
 struct NavigateArgs {
   std::string anatomy_path, target = "all", policy = gw::default_policy_path(), controller_kind = "policy";
-  std::string inlet_text, out_dir, wire_path, target_point_text;
+  std::string inlet_text, out_dir, wire_path, target_point_text, replay_path;
   gw::NavigationAnatomyOptions load;
   int episodes = 1, threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   std::uint64_t seed = 0;
@@ -68,6 +71,10 @@ void add_navigate_options(CLI::App& app, NavigateArgs& a) {
   app.add_option("--centerline", a.load.centerline_path,
                  "use this centerline file (.json, VMTK .vtp, 3D Slicer .mrk.json) instead of extracting one");
   app.add_option("--wire", a.wire_path, "guidewire parameter JSON (default: 0.014\" coronary wire)");
+  app.add_option("--replay", a.replay_path,
+                 "replay a procedure plan (`plan --out DIR` writes DIR/plan.json): its task, target, seed, wire, heart "
+                 "and inlet, its actions; the same trajectory bit for bit")
+      ->excludes(target_option);
   gw::add_task_options(app, a.task);
   gw::add_procedure_options(app, a.procedure);
   app.add_option("--heart-rate", a.heart.heart_rate_bpm,
@@ -110,6 +117,7 @@ nlohmann::json navigation_summary(const NavigateArgs& a, const gw::NavigationAna
   summary["anatomy"] = a.anatomy_path;
   summary["controller"] = a.controller_kind == "policy" ? "sac-policy" : a.controller_kind;
   if (a.controller_kind == "policy") summary["policy"] = gw::recorded_path(a.policy);
+  if (!a.replay_path.empty()) summary["replay"] = gw::recorded_path(a.replay_path);
   const Eigen::Vector3d& inlet = nav.anatomy.graph.inlet.position;
   summary["inlet"] = {{"source", nav.inlet_source}, {"position", {inlet.x(), inlet.y(), inlet.z()}}};
   if (!nav.inlet_warning.empty()) summary["inlet"]["warning"] = nav.inlet_warning;
@@ -169,12 +177,40 @@ void print_report(const NavigateArgs& a, const gw::NavigationAnatomy& nav, const
   if (!a.out_dir.empty()) std::cout << "wrote " << summary["files"].size() << " files to " << a.out_dir << "\n";
 }
 
+// --replay: the plan's actions, and its task, target, seed, wire, heart and inlet in `a` and `config` (a task
+// flag, --controller or --policy beside it is refused: the plan fixes them).
+std::vector<gw::Action> take_replay(NavigateArgs& a, gw::TaskConfig& config, const CLI::App& app) {
+  if (!a.task.task.empty() || !a.task.flags.empty() || app.count("--controller") || app.count("--policy"))
+    throw std::invalid_argument("--replay: the plan fixes the task and the actions; drop --task, the task flags, "
+                                "--controller and --policy");
+  const nlohmann::json plan = gw::read_json_file(a.replay_path, "plan");
+  std::vector<gw::Action> actions = gw::plan_actions_from_json(plan, a.replay_path);
+  try {
+    config = gw::task_config_from_json(plan.at("task"), gw::TaskConfig{});
+    a.target = std::to_string(plan.at("target").get<int>());
+    a.seed = plan.at("seed").get<std::uint64_t>();
+    const std::string wire = plan.at("wire").get<std::string>();
+    if (a.wire_path.empty() && !wire.empty()) a.wire_path = std::filesystem::exists(wire) ? wire : gw::shipped_path(wire);
+    if (!app.count("--heart-rate")) a.heart.heart_rate_bpm = plan.at("heart_rate_bpm").get<double>();
+    if (a.heart.motion_path.empty()) a.heart.motion_path = plan.at("motion").get<std::string>();
+    if (a.inlet_text.empty() && plan.at("inlet").is_array())
+      a.load.inlet = Eigen::Vector3d(plan["inlet"][0].get<double>(), plan["inlet"][1].get<double>(), plan["inlet"][2].get<double>());
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(a.replay_path + ": a plan field is missing or of the wrong type (" + e.what() + ")");
+  }
+  a.episodes = 1;
+  a.controller_kind = "replay";
+  return actions;
+}
+
 // The episodes asked for: the anatomy loaded (or its target list printed), the task made, the batch run, reported.
-int navigate(NavigateArgs a) {
+int navigate(NavigateArgs a, const CLI::App& app) {
   if (a.scale_given && (!(a.load.scale > 0) || !std::isfinite(a.load.scale)))
     throw std::invalid_argument("--scale must be a positive number");
   const auto start = std::chrono::steady_clock::now();
   gw::TaskConfig config = gw::resolve_task_config(a.task);  // a bad --task fails before the mesh loads
+  std::vector<gw::Action> replay;
+  if (!a.replay_path.empty()) replay = take_replay(a, config, app);
   if (!a.inlet_text.empty()) a.load.inlet = parse_point(a.inlet_text);
   a.load.use_cache = !a.no_cache;
   const gw::NavigationAnatomy nav = gw::load_navigation_anatomy(a.anatomy_path, a.load);
@@ -188,7 +224,10 @@ int navigate(NavigateArgs a) {
     return 0;
   }
   // Fail on the policy before the simulation starts: a missing or mismatched file is a user error.
-  auto make_controller = [&] { return gw::make_controller(a.controller_kind, a.policy); };
+  auto make_controller = [&]() -> std::unique_ptr<gw::Controller> {
+    if (!a.replay_path.empty()) return gw::make_replay_controller(replay);
+    return gw::make_controller(a.controller_kind, a.policy);
+  };
   make_controller()->adapt(config);  // the actor's observation and action layouts (an obs/1 actor: the paper's omega)
   const gw::WireParams wire = a.wire_path.empty() ? gw::default_wire_params() : gw::load_wire_params(a.wire_path);
   gw::Anatomy anatomy = nav.anatomy;
@@ -242,7 +281,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   args.scale_given = app.count("--scale") > 0;
   try {
-    return navigate(args);
+    return navigate(args, app);
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 1;

@@ -1,6 +1,8 @@
 """Writes the three aortic-arch specs of the segmentation set (Type I, II, III) beside this file.
 
-    python anatomies/segmentation/make_arch_specs.py        # numpy only; prints each arch's measurements
+    python anatomies/segmentation/make_arch_specs.py               # numpy only; prints each arch's measurements
+    python anatomies/segmentation/make_arch_specs.py --validation  # three held-apart arches for choices
+                                                                   # (anatomies/validation/arches/)
 
 Frame (mm): x to the patient's left, y posterior, z superior. The arch lies near the vertical plane
 through the ascending and descending aorta, whose horizontal direction u runs from the ascending
@@ -170,6 +172,14 @@ ARCHES = [
     ("arch_type3", 46.0, 155, 115, 75, "Type III", "Type III is > 2"),
 ]
 
+# Validation arches: other heights and branch angles within the same types, for choices (planner settings, a
+# controller's recipe) that must not be made on the measured arches above.
+VALIDATION_ARCHES = [
+    ("arch_val_type1", 30.0, 115, 90, 62, "Type I", "Type I is < 1"),
+    ("arch_val_type2", 38.0, 135, 102, 68, "Type II", "Type II is 1-2"),
+    ("arch_val_type3", 50.0, 150, 112, 72, "Type III", "Type III is > 2"),
+]
+
 def spec_text(spec):
     """The committed specs' layout: one line per field, one line per branch."""
     head = ",\n".join(f"  {json.dumps(k)}: {json.dumps(spec[k])}" for k in ("name", "description", "units"))
@@ -178,8 +188,12 @@ def spec_text(spec):
 
 
 if __name__ == "__main__":
-    for name, height, tb, tc, ts, kind, rule in ARCHES:
+    import sys
+    validation = "--validation" in sys.argv[1:]
+    out = HERE.parent / "validation" / "arches" if validation else HERE
+    out.mkdir(parents=True, exist_ok=True)
+    for name, height, tb, tc, ts, kind, rule in VALIDATION_ARCHES if validation else ARCHES:
         desc = COMMON.format(type=kind, width=WIDTH, height=height, rule=rule)
         spec, info = arch(name, height, tb, tc, ts, desc)
-        (HERE / f"{name}.spec.json").write_text(spec_text(spec))
+        (out / f"{name}.spec.json").write_text(spec_text(spec))
         print(name, json.dumps(info))

@@ -19,7 +19,9 @@
 #include "lib/runner/heart_motion.hpp"
 #include "lib/runner/navigation_anatomy.hpp"
 #include "lib/runner/reachability.hpp"
+#include "lib/runner/row_planned.hpp"
 #include "lib/runner/success_statistics.hpp"
+#include "plan/planning_task.hpp"
 #include "task/navigation_task.hpp"
 #include "task/task_config_json.hpp"
 #include "engine/wire/wire_params.hpp"
@@ -198,6 +200,9 @@ nlohmann::json evaluation_settings(const EvaluationOptions& o) {
   if (o.task.observation.junctions != JunctionModel::kSeparate)
     settings["junctions"] = junction_model_name(o.task.observation.junctions);
   if (o.step_time_limit_s > 0) settings["step_time_limit_s"] = o.step_time_limit_s;
+  if (o.planned_seeds > 0)
+    settings["planned"] = {{"seeds", o.planned_seeds}, {"force_limit_N", o.plan.force_limit_N},
+                           {"budget_env_steps", o.plan.max_env_steps}};
   if (o.reshape_tip_per_mm > 0) settings["reshape_tip_per_mm"] = o.reshape_tip_per_mm;
   if (o.reshape_tip_length_mm > 0) settings["reshape_tip_length_mm"] = o.reshape_tip_length_mm;
   if (o.task.force_limit_N > 0) settings["force_limit_N"] = o.task.force_limit_N;
@@ -328,6 +333,9 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
       }
       r["reachability"] = row_reachability(default_task, r["results"], o.reachability_seeds, o.threads);
       if (o.reachability_seeds > 0) r["ceiling"] = row_ceiling(default_task, r["results"], o.threads);
+      if (o.planned_seeds > 0)  // the planner in its own task: act/2, control everywhere (plan/planning_task.hpp)
+        r["planned"] = row_planned(make_navigation_task(planning_task_config(base_config), wire, anatomies),
+                                   o.planned_seeds, o.seed, o.plan, o.threads);
     } catch (const std::exception& e) {
       r["skipped"] = e.what();
     }
@@ -649,6 +657,33 @@ std::string safety_and_recovery_table(const nlohmann::json& e) {
 
 }  // namespace
 
+// The rows' "planned" figures (evaluate --planned-seeds), when any row has one: "" otherwise.
+std::string planned_markdown(const nlohmann::json& e) {
+  std::ostringstream md;
+  for (const nlohmann::json& r : e["rows"]) {
+    if (!r.contains("planned")) continue;
+    const nlohmann::json& p = r["planned"];
+    if (md.tellp() == 0)
+      md << "\n## Planned (the procedure planner, docs/planning.md)\n\nEvery target of the row planned (push, pull, "
+            "rotate; tip force within " << p["force_limit_N"].get<double>() << " N), from up to "
+         << p["seeds"].get<int>() << " seed(s) each, a search budget of " << p["budget_env_steps"].get<long>()
+         << " env steps.\n\n| case | targets | planned | strict | not found (target: nearest approach, mm) | "
+            "median planning time, s |\n|---|---|---|---|---|---|\n";
+    std::string missed;
+    for (const nlohmann::json& t : p["per_target"])
+      if (t["found"] == "none") {
+        std::ostringstream one;
+        one << (missed.empty() ? "" : ", ") << target_key(t["anatomy"].get<std::string>(), t["target"].get<int>())
+            << ": " << std::fixed << std::setprecision(1) << t["remaining_mm"].get<double>();
+        missed += one.str();
+      }
+    md << "| " << r["name"].get<std::string>() << " | " << p["targets"].get<int>() << " | " << p["planned"].get<int>()
+       << " | " << p["strict"].get<int>() << " | " << (missed.empty() ? "—" : missed) << " | " << std::fixed
+       << std::setprecision(1) << p["median_seconds"].get<double>() << " |\n";
+  }
+  return md.str();
+}
+
 std::string evaluation_to_markdown(const nlohmann::json& e) {
   std::ostringstream md;
   // A run away from the task's defaults says so above its table: its rates are another experiment's.
@@ -713,6 +748,7 @@ std::string evaluation_to_markdown(const nlohmann::json& e) {
     for (const auto& note : r["notes"]) md << sep << note.get<std::string>();
     md << "\n";
   }
+  md << planned_markdown(e);
   return md.str();
 }
 

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "plan/plan_procedure.hpp"
 #include "task/anatomy.hpp"
 #include "task/task_config.hpp"
 
@@ -51,6 +52,10 @@ struct EvaluationOptions {
   // Targets that no controller of a row reached are probed with the rotation schedules
   // (reachability.hpp) from this many seeds each; 0 = do not probe.
   int reachability_seeds = 2;
+  // Every target of a row planned with the procedure planner (row_planned.hpp) from up to this many seeds, under
+  // `plan` (its force budget and search budget); the row's "planned" figure. 0 = do not plan (the default).
+  int planned_seeds = 0;
+  PlanOptions plan;
   // The task (evaluate's --task and task flags, lib/runner/task_options.hpp). The controllers' columns run it as
   // it is, each with its actor's layouts (Controller::adapt); the episodes' draw and the reachability probes run it
   // strict: without recovery and force limit.

@@ -1,0 +1,125 @@
+// The procedure planner (plan/): it finds plans on a training Y, its plans replay bit for bit through the
+// replay controller (what navigate --replay runs), every step stays within the force budget, a search that runs
+// out of budget says so with where the tip got, and bad input is refused by name.
+#include <catch2/catch.hpp>
+
+#include "engine/wire/wire_params.hpp"
+#include "lib/runner/replay_controller.hpp"
+#include "lib/runner/row_planned.hpp"
+#include "lib/runner/run_episode.hpp"
+#include "plan/plan_json.hpp"
+#include "plan/plan_procedure.hpp"
+#include "plan/planning_task.hpp"
+#include "task/anatomy.hpp"
+
+namespace {
+
+const std::string kT1 = std::string(GW_SOURCE_DIR) + "/anatomies/train/t1_straight_y/t1_straight_y";
+
+const gw::NavigationTask& y_task() {
+  static const gw::NavigationTask task = gw::make_navigation_task(
+      gw::planning_task_config(gw::TaskConfig{}), gw::default_wire_params(),
+      {gw::load_anatomy("t1", kT1 + ".stl", kT1 + ".truth.json")});
+  return task;
+}
+
+gw::EpisodeTrace replay(const gw::ProcedurePlan& plan, int target, std::uint64_t seed) {
+  auto controller = gw::make_replay_controller(gw::plan_actions_from_json(gw::plan_to_json(plan), "plan"));
+  return gw::run_episode(y_task(), 0, target, seed, *controller);
+}
+
+}  // namespace
+
+TEST_CASE("plan: both targets of a training Y are planned, and each plan replays to the same trajectory", "[plan]") {
+  for (const int target : {1, 2}) {
+    gw::PlanOptions o;
+    o.successes = 1;
+    const gw::ProcedurePlan plan = gw::plan_procedure(y_task(), 0, target, 3, o);
+    INFO("target " << target << ": " << gw::plan_to_json(plan).dump());
+    REQUIRE(plan.kind != gw::PlanKind::kNone);
+    CHECK(plan.remaining_mm < y_task().config.success_radius_mm + 1e-9);
+    CHECK(plan.peak_tip_force_N <= o.force_limit_N);
+    const gw::EpisodeTrace a = replay(plan, target, 3), b = replay(plan, target, 3);
+    CHECK(gw::procedure_outcome(a) == "success");
+    REQUIRE(a.time_s.size() == plan.actions.size() + 1);
+    REQUIRE(a.tip.size() == b.tip.size());
+    for (std::size_t k = 0; k < a.tip.size(); ++k) REQUIRE(a.tip[k] == b.tip[k]);  // bit for bit
+    CHECK(a.tip.back() == plan.tip_end);  // the search's own end state, retraced exactly
+    for (const double f : a.tip_force_mN) CHECK(f <= 1000.0 * o.force_limit_N);
+  }
+}
+
+TEST_CASE("plan: the same inputs give the same plan", "[plan]") {
+  gw::PlanOptions o;
+  o.successes = 1;
+  o.max_env_steps = 3000;
+  const nlohmann::json a = gw::plan_to_json(gw::plan_procedure(y_task(), 0, 2, 5, o));
+  const nlohmann::json b = gw::plan_to_json(gw::plan_procedure(y_task(), 0, 2, 5, o));
+  CHECK(a["actions"] == b["actions"]);
+  CHECK(a["found"] == b["found"]);
+  CHECK(a["tip_end"] == b["tip_end"]);
+}
+
+TEST_CASE("plan: a tighter force budget drops the steps above it, and an exhausted budget reports where the tip got",
+          "[plan]") {
+  gw::PlanOptions o;
+  o.max_env_steps = 40;  // 8 maneuvers: far too few to cross the Y
+  const gw::ProcedurePlan none = gw::plan_procedure(y_task(), 0, 1, 0, o);
+  CHECK(none.kind == gw::PlanKind::kNone);
+  CHECK(none.actions.empty());
+  CHECK(none.remaining_mm > 10.0);
+  CHECK(none.strict.env_steps + none.procedure.env_steps >= 40);
+  CHECK(none.tip_end.norm() > 0);
+  const nlohmann::json j = gw::plan_to_json(none);
+  CHECK(j["found"] == "none");
+  CHECK(j["reached"] == false);
+  CHECK(j["search"]["strict"]["maneuvers"].get<int>() > 0);
+
+  o.max_env_steps = 20000;
+  o.force_limit_N = 1e-6;  // any touch of the wall with the tip is over it
+  const gw::ProcedurePlan light = gw::plan_procedure(y_task(), 0, 1, 0, o);
+  if (light.kind != gw::PlanKind::kNone)
+    for (const double f : replay(light, 1, 0).tip_force_mN) CHECK(f <= 1e-3);
+  CHECK(light.strict.over_force + light.procedure.over_force > 0);
+}
+
+TEST_CASE("plan: bad input is refused naming the problem", "[plan]") {
+  gw::NavigationTask rotation_only = y_task();
+  rotation_only.config.action = gw::ActionLayout::kRotation;
+  CHECK_THROWS_WITH(gw::plan_procedure(rotation_only, 0, 1, 0), Catch::Contains("act/2"));
+  gw::PlanOptions o;
+  o.force_limit_N = 0;
+  CHECK_THROWS_WITH(gw::plan_procedure(y_task(), 0, 1, 0, o), Catch::Contains("force limit"));
+  CHECK_THROWS_WITH(gw::plan_procedure(y_task(), 0, 9, 0), Catch::Contains("target"));
+  CHECK_THROWS_WITH(gw::plan_actions_from_json({{"format", "x"}}, "p.json"), Catch::Contains("p.json: not a plan"));
+  CHECK_THROWS_WITH(gw::plan_actions_from_json({{"format", gw::kPlanFormat}, {"actions", {{0.5}}}}, "p.json"),
+                    Catch::Contains("action 0 is not [rotation, insertion]"));
+  CHECK_THROWS_WITH(gw::plan_actions_from_json({{"format", gw::kPlanFormat}, {"actions", {{0.5, 2.0}}}}, "p.json"),
+                    Catch::Contains("outside [-1, 1]"));
+}
+
+TEST_CASE("plan: a row's planned figure covers every target of its anatomies", "[plan]") {
+  gw::PlanOptions o;
+  o.successes = 1;
+  const nlohmann::json p = gw::row_planned(y_task(), 1, 3, o, 2);
+  CHECK(p["targets"] == 2);
+  CHECK(p["planned"] == 2);
+  CHECK(p["strict"].get<int>() <= 2);
+  REQUIRE(p["per_target"].size() == 2);
+  for (const nlohmann::json& t : p["per_target"]) {
+    CHECK(t["anatomy"] == "t1");
+    CHECK(t["found"] != "none");
+    CHECK(t["seed"] == 3);
+    CHECK(t["peak_tip_force_N"].get<double>() <= o.force_limit_N);
+  }
+  CHECK(p["per_target"][0]["target"] == 1);
+  CHECK(p["per_target"][1]["target"] == 2);
+  o.max_env_steps = 10;  // nothing can be found: every target says so, with its nearest approach
+  const nlohmann::json none = gw::row_planned(y_task(), 2, 0, o, 1);
+  CHECK(none["planned"] == 0);
+  for (const nlohmann::json& t : none["per_target"]) {
+    CHECK(t["found"] == "none");
+    CHECK(t["seed"] == 1);  // both seeds tried
+    CHECK(t["remaining_mm"].get<double>() > 10.0);
+  }
+}

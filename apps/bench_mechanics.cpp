@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   bool friction_torque = false;
   double heart_rate = 0;
   std::string motion_path;
-  app.add_option("--anatomy", stem, "anatomy path without extension (STEM.stl, STEM.truth.json)");
+  app.add_option("--anatomy", stem, "a generated anatomy: STEM or STEM.stl (its STEM.truth.json gives the inlet)");
   app.add_option("--push", push, "insertion speed [mm/s]");
   app.add_option("--length", length, "inserted length to reach [mm]");
   app.add_option("--roll", roll, "initial axial roll [rad]");
@@ -53,7 +53,8 @@ int main(int argc, char** argv) {
   app.add_option("--motion", motion_path, "cardiac motion JSON (default: the generator's coronary field)");
   CLI11_PARSE(app, argc, argv);
   try {
-    const nlohmann::json truth = gw::read_json_file(stem + ".truth.json", "truth centerline (bench-mechanics takes a generated anatomy's stem)");
+    if (stem.size() > 4 && stem.compare(stem.size() - 4, 4, ".stl") == 0) stem.resize(stem.size() - 4);  // STEM.stl
+    const nlohmann::json truth = gw::read_json_file(stem + ".truth.json", "truth centerline (bench-mechanics runs a generated anatomy: --anatomy STEM with STEM.stl and STEM.truth.json)");
     Eigen::Vector3d inlet, dir;
     for (int i = 0; i < 3; ++i) {
       inlet[i] = truth.at("inlet").at("position").at(i).get<double>();

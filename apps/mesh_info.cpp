@@ -34,9 +34,10 @@ int main(int argc, char** argv) {
     } else {
       std::cout << path << "\n" << gw::format_report(s.input);
       if (s.repairs.empty()) std::cout << "intake: used as it is (closed, one piece, outward)\n";
-      for (const std::string& r : s.repairs) std::cout << "repaired: " << r << "\n";
-      for (const std::string& w : s.warnings) std::cout << "warning: " << w << "\n";
     }
+    // As every app prints them: on stderr, naming the file (the --json report holds them too).
+    for (const std::string& r : s.repairs) std::cerr << "repaired: " << path << ": " << r << "\n";
+    for (const std::string& w : s.warnings) std::cerr << "warning: " << path << ": " << w << "\n";
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";

@@ -35,8 +35,9 @@ namespace {
 Eigen::Vector3d parse_point(const std::string& text, const std::string& flag = "--inlet") {
   Eigen::Vector3d p;
   char c1 = 0, c2 = 0;
-  if (std::sscanf(text.c_str(), "%lf%c%lf%c%lf", &p.x(), &c1, &p.y(), &c2, &p.z()) != 5 || c1 != ',' || c2 != ',')
-    throw std::invalid_argument(flag + " expects x,y,z (three numbers separated by commas), got '" + text + "'");
+  if (std::sscanf(text.c_str(), "%lf%c%lf%c%lf", &p.x(), &c1, &p.y(), &c2, &p.z()) != 5 || c1 != ',' || c2 != ',' ||
+      !p.allFinite())
+    throw std::invalid_argument(flag + " expects x,y,z (three finite numbers separated by commas, mm), got '" + text + "'");
   return p;
 }
 

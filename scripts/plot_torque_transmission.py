@@ -49,4 +49,13 @@ def main(src: str, dst: str) -> None:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1], sys.argv[2])
+    import argparse
+
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("runs", help="the JSON torque-transmission --out wrote")
+    parser.add_argument("png", help="the figure to write")
+    args = parser.parse_args()
+    try:
+        main(args.runs, args.png)
+    except (OSError, ValueError, KeyError) as e:
+        sys.exit(f"error: {args.runs}: {e}")

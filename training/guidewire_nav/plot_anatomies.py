@@ -1,6 +1,6 @@
 """Picture of the anatomy set: every anatomy's surface, centreline, inlet and numbered targets.
 
-    python -m guidewire_nav.plot_anatomies [--index anatomies/index.json] [--out anatomies/anatomies.png]
+    python -m guidewire_nav.plot_anatomies [--index anatomies/index.json] [--out runs/anatomies.png]
 
 Reads anatomies/index.json (written by `anatomy-gen --regenerate anatomies`), draws one 3D panel
 per anatomy: the STL surface (translucent), the ground-truth centreline (grey), the inlet (blue,
@@ -58,7 +58,8 @@ def draw(ax, root: Path, entry: dict, max_faces: int = 12000) -> None:
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--index", default="anatomies/index.json", help="anatomy index to draw")
-    parser.add_argument("--out", default="anatomies/anatomies.png", help="output PNG")
+    parser.add_argument("--out", default="runs/anatomies.png",
+                        help="output PNG (default runs/anatomies.png; the committed picture is anatomies/anatomies.png)")
     args = parser.parse_args(argv)
 
     import matplotlib
@@ -67,6 +68,8 @@ def main(argv: list[str] | None = None) -> None:
     import matplotlib.pyplot as plt
 
     index = Path(args.index)
+    if not index.is_file():
+        parser.error(f"--index: {index}: no such anatomy index (give anatomies/index.json or a set's manifest)")
     root = index.resolve().parent.parent  # paths in the index are relative to the repository root
     entries = json.loads(index.read_text())["anatomies"]
     order = {"train": 0, "sensitivity": 1, "test": 2, "validation": 3}  # trained on, tested on, checkpoint choice
@@ -78,6 +81,7 @@ def main(argv: list[str] | None = None) -> None:
         draw(fig.add_subplot(rows, cols, i + 1, projection="3d"), root, entry)
     fig.suptitle("Anatomy set (mm): inlet blue, numbered targets green, bifurcation centres black", fontsize=11)
     fig.tight_layout(rect=(0, 0, 1, 1 - 0.4 / fig.get_figheight()))  # leave the suptitle its own line
+    Path(args.out).parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(args.out, dpi=110)
     print(json.dumps({"out": args.out, "anatomies": len(entries)}))
 

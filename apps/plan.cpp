@@ -128,7 +128,7 @@ int plan_main(PlanArgs a) {
   if (!a.demos_path.empty()) write_demonstrations(a.demos_path, trace, doc);
   const gw::SearchStats& last = plan.procedure.maneuvers > 0 ? plan.procedure : plan.strict;
   std::cerr << "plan: " << a.anatomy_path << " target " << a.target << ": " << gw::plan_kind_name(plan.kind)
-            << (plan.kind == gw::PlanKind::kNone ? " found, the tip got within " + std::to_string(plan.remaining_mm) + " mm"
+            << (plan.kind == gw::PlanKind::kNone ? " found, the tip got within " + std::to_string(plan.tip_to_target_mm) + " mm of the target"
                                                  : " plan, " + std::to_string(plan.time_s) + " s, " +
                                                        std::to_string(plan.wrong_entries) + " wrong-branch entries")
             << "; peak tip force " << plan.peak_tip_force_N << " N, peak node force " << plan.peak_node_force_N

@@ -14,7 +14,7 @@ nlohmann::json stats_json(const SearchStats& s) {
           {"ended", s.ended},
           {"wrong_branch", s.wrong_branch},
           {"found", s.found},
-          {"best_remaining_mm", s.best_remaining_mm},
+          {"nearest_target_mm", s.nearest_target_mm},
           {"best_tip", {s.best_tip.x(), s.best_tip.y(), s.best_tip.z()}},
           {"seconds", s.seconds}};
 }
@@ -34,7 +34,7 @@ nlohmann::json plan_to_json(const ProcedurePlan& plan) {
                       {"peak_tip_force_N", plan.peak_tip_force_N},
                       {"peak_node_force_N", plan.peak_node_force_N},
                       {"tip_end", {plan.tip_end.x(), plan.tip_end.y(), plan.tip_end.z()}},
-                      {"remaining_mm", plan.remaining_mm},
+                      {"tip_to_target_mm", plan.tip_to_target_mm},
                       {"actions", actions}};
   j["search"]["strict"] = stats_json(plan.strict);
   if (plan.procedure.maneuvers > 0) j["search"]["procedure"] = stats_json(plan.procedure);

@@ -1,7 +1,7 @@
 #pragma once
 // A procedure plan as JSON (format "guidewire-nav/plan/1", docs/planning.md) and back.
 // plan_to_json: Input: a plan. Output: {"format", "found": none|strict|procedure, "reached", "steps",
-// "procedure_time_s", "wrong_entries", "peak_tip_force_N", "peak_node_force_N", "tip_end", "remaining_mm",
+// "procedure_time_s", "wrong_entries", "peak_tip_force_N", "peak_node_force_N", "tip_end", "tip_to_target_mm",
 // "actions": [[rotation, insertion], ...] (the in-control steps', the order a controller is asked),
 // "search": {"strict": {...}, "procedure": {...}}}; the caller adds what the plan ran on (anatomy, target,
 // seed, task, wire, heart).

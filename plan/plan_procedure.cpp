@@ -39,6 +39,7 @@ struct Node {
 };
 
 double remaining_mm(const EpisodeState& s) { return current_course(s).line.length - s.progress_mm; }
+double tip_to_target_mm(const EpisodeState& s) { return (s.tip - current_course(s).target).norm(); }
 
 // The visited-cell key: progress, distance from the course and inserted length in 1 mm, the proximal roll in 30 deg.
 std::array<long, 4> cell_of(const EpisodeState& s) {
@@ -62,7 +63,7 @@ class Search {
     Node start;
     start.state = root;
     start.cost = cost(root, 0.0);
-    stats_.best_remaining_mm = remaining_mm(root);
+    stats_.nearest_target_mm = tip_to_target_mm(root);
     stats_.best_tip = root.tip;
     visited_.insert(cell_of(root));
     add(std::move(start));
@@ -147,8 +148,8 @@ class Search {
     if (!reached && !visited_.insert(cell_of(s)).second) return;
     child.cost = cost(s, child.peak_tip_mN);
     ++stats_.generated;
-    if (remaining_mm(s) < stats_.best_remaining_mm) {
-      stats_.best_remaining_mm = remaining_mm(s);
+    if (tip_to_target_mm(s) < stats_.nearest_target_mm) {
+      stats_.nearest_target_mm = tip_to_target_mm(s);
       stats_.best_tip = s.tip;
     }
     if (reached) {
@@ -191,7 +192,7 @@ ProcedurePlan plan_of(const NavigationTask& task, const std::deque<Node>& nodes,
   plan.peak_node_force_N = end.peak_node_mN / 1000.0;
   plan.wrong_entries = end.state.procedure.attempts_used;
   plan.tip_end = end.state.tip;
-  plan.remaining_mm = remaining_mm(end.state);
+  plan.tip_to_target_mm = tip_to_target_mm(end.state);
   return plan;
 }
 
@@ -233,7 +234,7 @@ ProcedurePlan plan_procedure(const NavigationTask& task, int anatomy, int target
   if (options.strict_only) {
     plan.strict = strict.stats();
     plan.tip_end = strict.stats().best_tip;
-    plan.remaining_mm = strict.stats().best_remaining_mm;
+    plan.tip_to_target_mm = strict.stats().nearest_target_mm;
     return plan;
   }
   Search procedure(task, options, false, options.max_env_steps - strict.stats().env_steps);
@@ -242,10 +243,10 @@ ProcedurePlan plan_procedure(const NavigationTask& task, int anatomy, int target
     const int id = lowest_force(procedure.nodes(), found);
     plan = plan_of(task, procedure.nodes(), id, PlanKind::kProcedure);
   } else {
-    const bool procedure_nearer = procedure.stats().best_remaining_mm < strict.stats().best_remaining_mm;
+    const bool procedure_nearer = procedure.stats().nearest_target_mm < strict.stats().nearest_target_mm;
     const SearchStats& nearer = procedure_nearer ? procedure.stats() : strict.stats();
     plan.tip_end = nearer.best_tip;
-    plan.remaining_mm = nearer.best_remaining_mm;
+    plan.tip_to_target_mm = nearer.nearest_target_mm;
   }
   plan.strict = strict.stats();
   plan.procedure = procedure.stats();

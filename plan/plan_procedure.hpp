@@ -48,7 +48,7 @@ struct SearchStats {
   int ended = 0;                    // children whose episode ended without reaching (stall, wire out, diverged)
   int wrong_branch = 0;             // children dropped for entering a wrong branch (strict search)
   int found = 0;                    // plans found
-  double best_remaining_mm = 0.0;   // the nearest any node got: the course's length less its progress
+  double nearest_target_mm = 0.0;   // the nearest any node's tip got to the target (straight distance)
   Eigen::Vector3d best_tip = Eigen::Vector3d::Zero();
   double seconds = 0.0;             // wall time
 };
@@ -63,7 +63,7 @@ struct ProcedurePlan {
   double peak_tip_force_N = 0.0;    // over the plan's steps
   double peak_node_force_N = 0.0;   // the largest single-node wall force over its steps (any node)
   Eigen::Vector3d tip_end = Eigen::Vector3d::Zero();  // where the tip ended (none found: the nearest node's)
-  double remaining_mm = 0.0;        // course length less the tip's progress at the end
+  double tip_to_target_mm = 0.0;    // the tip's straight distance to the target at the end (none found: the nearest)
   SearchStats strict, procedure;    // procedure: left at zero when the strict search found a plan
 };
 

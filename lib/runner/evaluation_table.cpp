@@ -667,14 +667,14 @@ std::string planned_markdown(const nlohmann::json& e) {
       md << "\n## Planned (the procedure planner, docs/planning.md)\n\nEvery target of the row planned (push, pull, "
             "rotate; tip force within " << p["force_limit_N"].get<double>() << " N), from up to "
          << p["seeds"].get<int>() << " seed(s) each, a search budget of " << p["budget_env_steps"].get<long>()
-         << " env steps.\n\n| case | targets | planned | strict | not found (target: nearest approach, mm) | "
+         << " env steps.\n\n| case | targets | planned | strict | not found (target: the tip's nearest approach to it, mm) | "
             "median planning time, s |\n|---|---|---|---|---|---|\n";
     std::string missed;
     for (const nlohmann::json& t : p["per_target"])
       if (t["found"] == "none") {
         std::ostringstream one;
         one << (missed.empty() ? "" : ", ") << target_key(t["anatomy"].get<std::string>(), t["target"].get<int>())
-            << ": " << std::fixed << std::setprecision(1) << t["remaining_mm"].get<double>();
+            << ": " << std::fixed << std::setprecision(1) << t["tip_to_target_mm"].get<double>();
         missed += one.str();
       }
     md << "| " << r["name"].get<std::string>() << " | " << p["targets"].get<int>() << " | " << p["planned"].get<int>()

@@ -40,7 +40,7 @@ nlohmann::json target_json(const NavigationTask& task, const PlannedTarget& t) {
                       {"wrong_entries", p.wrong_entries},
                       {"peak_tip_force_N", p.peak_tip_force_N},
                       {"peak_node_force_N", p.peak_node_force_N},
-                      {"remaining_mm", p.remaining_mm},
+                      {"tip_to_target_mm", p.tip_to_target_mm},
                       {"env_steps", p.strict.env_steps + p.procedure.env_steps},
                       {"seconds", p.strict.seconds + p.procedure.seconds}};
   if (!t.error.empty()) j["error"] = t.error;

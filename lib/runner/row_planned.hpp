@@ -5,7 +5,7 @@
 // parallel). Output: {"targets", "planned" (a plan found),
 // "strict" (a strict one), "force_limit_N", "budget_env_steps", "seeds", "median_seconds", "per_target": [{"anatomy",
 // "target", "found": strict|procedure|none, "seed", "procedure_time_s", "wrong_entries", "peak_tip_force_N",
-// "peak_node_force_N", "remaining_mm", "env_steps", "seconds"}]} in the order of target_key.
+// "peak_node_force_N", "tip_to_target_mm", "env_steps", "seconds"}]} in the order of target_key.
 #include <cstdint>
 
 #include <nlohmann/json.hpp>

@@ -37,7 +37,7 @@ TEST_CASE("plan: both targets of a training Y are planned, and each plan replays
     const gw::ProcedurePlan plan = gw::plan_procedure(y_task(), 0, target, 3, o);
     INFO("target " << target << ": " << gw::plan_to_json(plan).dump());
     REQUIRE(plan.kind != gw::PlanKind::kNone);
-    CHECK(plan.remaining_mm < y_task().config.success_radius_mm + 1e-9);
+    CHECK(plan.tip_to_target_mm <= y_task().config.success_radius_mm);
     CHECK(plan.peak_tip_force_N <= o.force_limit_N);
     const gw::EpisodeTrace a = replay(plan, target, 3), b = replay(plan, target, 3);
     CHECK(gw::procedure_outcome(a) == "success");
@@ -67,7 +67,7 @@ TEST_CASE("plan: a tighter force budget drops the steps above it, and an exhaust
   const gw::ProcedurePlan none = gw::plan_procedure(y_task(), 0, 1, 0, o);
   CHECK(none.kind == gw::PlanKind::kNone);
   CHECK(none.actions.empty());
-  CHECK(none.remaining_mm > 10.0);
+  CHECK(none.tip_to_target_mm > 10.0);
   CHECK(none.strict.env_steps + none.procedure.env_steps >= 40);
   CHECK(none.tip_end.norm() > 0);
   const nlohmann::json j = gw::plan_to_json(none);
@@ -120,6 +120,6 @@ TEST_CASE("plan: a row's planned figure covers every target of its anatomies", "
   for (const nlohmann::json& t : none["per_target"]) {
     CHECK(t["found"] == "none");
     CHECK(t["seed"] == 1);  // both seeds tried
-    CHECK(t["remaining_mm"].get<double>() > 10.0);
+    CHECK(t["tip_to_target_mm"].get<double>() > 10.0);
   }
 }

@@ -95,8 +95,13 @@ class Search {
     return remaining_mm(s) + o_.off_course_weight * s.course_distance_mm + o_.force_weight * peak_tip_mN / 1000.0;
   }
 
-  // Adds a node and its maneuvers to the open list.
+  // Adds a node and its maneuvers to the open list. The node keeps its state without the contact broad phase's
+  // cache (WireState::wall_cache, rebuilt on the next step: the contact answers are exact, so the trajectory is the
+  // same bit for bit, which every plan's replay checks), the bulk of a state on a wall the wire presses.
   void add(Node node) {
+    node.state.wire.wall_cache.clear();
+    node.state.wire.wall_cache.shrink_to_fit();
+    node.state.wire.wall_cache_scene = nullptr;
     nodes_.push_back(std::move(node));
     const int id = static_cast<int>(nodes_.size()) - 1;
     pending_.push_back(0);

@@ -269,3 +269,24 @@ def test_score_checkpoints_exports_and_scores_a_run(smoke_run, capsys):
     # A checkpoint the run does not have is named, not a traceback.
     assert score_checkpoints.main([str(smoke_run), "--steps", "12345", "--train-episode-scale", "0"]) == 1
     assert "sac_12345_steps.zip: no such checkpoint" in capsys.readouterr().err
+
+
+def test_init_actor_brings_its_layouts_into_the_task(tmp_path):
+    """--init-actor: the task takes the actor's layouts where it names none (the paper's obs/1 actor fine-tunes in
+    its own task without a --task), refuses a task naming others, and lets a rotation actor start a push/pull task."""
+    from guidewire_nav import train
+
+    paper = tmp_path / "paper_actor.json"
+    paper.write_text(json.dumps({"obs_layout": "guidewire-nav/obs/1", "action_layout": "guidewire-nav/act/1",
+                                 "action_size": 1, "layers": []}))
+    args = train.server_args(train.Settings(init_actor=str(paper)))
+    assert args[0] == "--task" and json.loads(args[1]) == {"observation": "guidewire-nav/obs/1",
+                                                           "action": "guidewire-nav/act/1"}
+    kept = json.loads(train.server_args(train.Settings(init_actor=str(paper), task='{"push_mm_per_s": 5}'))[1])
+    assert kept["push_mm_per_s"] == 5 and kept["observation"] == "guidewire-nav/obs/1"
+    with pytest.raises(SystemExit, match=r"obs/1 actor but --task sets observation guidewire-nav/obs/3"):
+        train.server_args(train.Settings(init_actor=str(paper), task='{"observation": "guidewire-nav/obs/3"}'))
+    push_pull = '{"action": "guidewire-nav/act/2", "observation": "guidewire-nav/obs/5"}'
+    assert json.loads(train.server_args(train.Settings(init_actor=str(paper), task=push_pull))[1]) == json.loads(push_pull)
+    with pytest.raises(SystemExit, match="--init-actor: .*no such file"):
+        train.server_args(train.Settings(init_actor=str(tmp_path / "missing.json")))

@@ -149,9 +149,38 @@ def task_settings(s: Settings) -> dict:
     return task
 
 
+def with_actor_layouts(task: dict, actor_path: str) -> dict:
+    """--init-actor: the task takes the actor's observation and action layouts (its obs_layout, action_layout) where
+    it does not name them, so an actor fine-tunes in its own task (the paper's obs/1 actor needs no --task); a task
+    that names other layouts is refused, naming both. A rotation actor (act/1) starting an act/2 task is the one
+    mismatch allowed (export_actor.widen_to_push_pull)."""
+    try:
+        actor = json.loads(Path(actor_path).read_text())
+    except FileNotFoundError:
+        raise SystemExit(f"--init-actor: {actor_path}: no such file (give an exported actor JSON)")
+    except json.JSONDecodeError as e:
+        raise SystemExit(f"--init-actor: {actor_path}: not JSON ({e})")
+    if not isinstance(actor, dict):
+        raise SystemExit(f"--init-actor: {actor_path}: not an actor JSON (an object with obs_layout and layers)")
+    if task.get("action") == "guidewire-nav/act/2" and actor.get("action_size") == 1:
+        return task  # widened: the push/pull task keeps its own layouts
+    out = dict(task)
+    for key, layout in (("observation", actor.get("obs_layout")), ("action", actor.get("action_layout"))):
+        if not isinstance(layout, str) or not layout.startswith("guidewire-nav/"):
+            continue  # an actor that does not say: the task's (or the defaults')
+        if key not in out:
+            out[key] = layout
+        elif isinstance(out[key], str) and out[key] != layout:
+            raise SystemExit(f"--init-actor: {actor_path} is a {layout} actor but --task sets {key} {out[key]}: drop "
+                             f"the task's {key!r} (the actor's is taken) or start from an actor of that layout")
+    return out
+
+
 def server_args(s: Settings) -> list[str]:
     """The servers' command line: the task JSON as it is (the server checks it and names a bad key)."""
     task = task_settings(s)
+    if s.init_actor:
+        task = with_actor_layouts(task, s.init_actor)
     return ["--task", json.dumps(task, separators=(",", ":"))] if task else []
 
 

@@ -7,26 +7,12 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <iostream>
-#include <sstream>
 
 #include "centerline/centerline_cache.hpp"
 #include "base/graph/inlet_ambiguity.hpp"
 #include "centerline/target_table.hpp"
 #include "base/graph/centerline_graph.hpp"
-
-namespace {
-
-Eigen::Vector3d parse_point(const std::string& text) {
-  std::istringstream s(text);
-  double x, y, z;
-  char c1 = 0, c2 = 0;
-  if (!(s >> x >> c1 >> y >> c2 >> z) || c1 != ',' || c2 != ',' || !(s >> std::ws).eof() ||
-      !Eigen::Vector3d(x, y, z).allFinite())
-    throw std::runtime_error("--inlet: expected x,y,z (three numbers separated by commas), got '" + text + "'");
-  return {x, y, z};
-}
-
-}  // namespace
+#include "base/util/parse_point.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"Extract the centerline graph (inlet, numbered targets, branches, bifurcations) of a vessel surface"};
@@ -52,7 +38,7 @@ int main(int argc, char** argv) {
     if (app.count("--scale") && (!(scale > 0) || !std::isfinite(scale)))
       throw std::runtime_error("--scale must be a positive number");
     if (!(options.spacing > 0)) throw std::runtime_error("--spacing must be a positive number");
-    if (!inlet_text.empty()) options.inlet = parse_point(inlet_text);
+    if (!inlet_text.empty()) options.inlet = gw::parse_point(inlet_text, "--inlet");
     gw::CenterlineStats stats;
     bool hit = false;
     const gw::CenterlineGraph graph = gw::cached_extract_centerline(path, scale, options, cache, &stats, &hit);

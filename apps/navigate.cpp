@@ -22,6 +22,7 @@
 #include "lib/runner/procedure_options.hpp"
 #include "lib/runner/replay_controller.hpp"
 #include "plan/plan_json.hpp"
+#include "base/util/parse_point.hpp"
 #include "base/util/read_json_file.hpp"
 #include "lib/runner/task_options.hpp"
 #include "centerline/target_table.hpp"
@@ -31,15 +32,6 @@
 #include "engine/wire/wire_params.hpp"
 
 namespace {
-
-Eigen::Vector3d parse_point(const std::string& text, const std::string& flag = "--inlet") {
-  Eigen::Vector3d p;
-  char c1 = 0, c2 = 0;
-  if (std::sscanf(text.c_str(), "%lf%c%lf%c%lf", &p.x(), &c1, &p.y(), &c2, &p.z()) != 5 || c1 != ',' || c2 != ',' ||
-      !p.allFinite())
-    throw std::invalid_argument(flag + " expects x,y,z (three finite numbers separated by commas, mm), got '" + text + "'");
-  return p;
-}
 
 // What the command line asks for.
 struct NavigateArgs {
@@ -212,12 +204,12 @@ int navigate(NavigateArgs a, const CLI::App& app) {
   gw::TaskConfig config = gw::resolve_task_config(a.task);  // a bad --task fails before the mesh loads
   std::vector<gw::Action> replay;
   if (!a.replay_path.empty()) replay = take_replay(a, config, app);
-  if (!a.inlet_text.empty()) a.load.inlet = parse_point(a.inlet_text);
+  if (!a.inlet_text.empty()) a.load.inlet = gw::parse_point(a.inlet_text, "--inlet");
   a.load.use_cache = !a.no_cache;
   const gw::NavigationAnatomy nav = gw::load_navigation_anatomy(a.anatomy_path, a.load);
   report_anatomy(a, nav, config);
   if (!a.target_point_text.empty()) {
-    a.target = std::to_string(gw::nearest_target(nav.anatomy.graph, parse_point(a.target_point_text, "--target-point")));
+    a.target = std::to_string(gw::nearest_target(nav.anatomy.graph, gw::parse_point(a.target_point_text, "--target-point")));
     std::cerr << "target: " << a.anatomy_path << ": --target-point is nearest target " << a.target << "\n";
   }
   if (a.list) {

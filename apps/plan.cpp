@@ -3,12 +3,11 @@
 //   plan --anatomy coronary.stl --target 3 --out runs/plan3
 //   navigate --anatomy coronary.stl --replay runs/plan3/plan.json      # the same trajectory, bit for bit
 #include <CLI/CLI.hpp>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 
-#include "base/util/read_json_file.hpp"
+#include "base/util/parse_point.hpp"
 #include "engine/wire/wire_params.hpp"
 #include "lib/runner/controller.hpp"
 #include "lib/runner/heart_motion.hpp"
@@ -55,15 +54,6 @@ void add_plan_options(CLI::App& app, PlanArgs& a) {
   app.add_flag("--json", a.print_json, "print the plan JSON on stdout");
 }
 
-Eigen::Vector3d parse_inlet(const std::string& text) {
-  Eigen::Vector3d p;
-  char c1 = 0, c2 = 0;
-  if (std::sscanf(text.c_str(), "%lf%c%lf%c%lf", &p.x(), &c1, &p.y(), &c2, &p.z()) != 5 || c1 != ',' || c2 != ',' ||
-      !p.allFinite())
-    throw std::invalid_argument("--inlet expects x,y,z (three finite numbers separated by commas), got '" + text + "'");
-  return p;
-}
-
 // The plan's JSON with what it ran on: navigate --replay reads these back.
 nlohmann::json plan_document(const PlanArgs& a, const gw::ProcedurePlan& plan, const gw::TaskConfig& config) {
   nlohmann::json j = gw::plan_to_json(plan);
@@ -106,7 +96,7 @@ void write_demonstrations(const std::string& path, const gw::EpisodeTrace& trace
 }
 
 int plan_main(PlanArgs a) {
-  if (!a.inlet_text.empty()) a.load.inlet = parse_inlet(a.inlet_text);
+  if (!a.inlet_text.empty()) a.load.inlet = gw::parse_point(a.inlet_text, "--inlet");
   const gw::NavigationAnatomy nav = gw::load_navigation_anatomy(a.anatomy_path, a.load);
   for (const std::string& r : nav.repairs) std::cerr << "repaired: " << a.anatomy_path << ": " << r << "\n";
   const gw::TaskConfig config = gw::planning_task_config(gw::TaskConfig{});

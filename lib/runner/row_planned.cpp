@@ -5,6 +5,7 @@
 #include <map>
 #include <thread>
 
+#include "base/util/median.hpp"
 #include "lib/runner/evaluation_table.hpp"
 
 namespace gw {
@@ -78,14 +79,13 @@ nlohmann::json row_planned(const NavigationTask& planning_task, int seeds, std::
     seconds.push_back(t->plan.strict.seconds + t->plan.procedure.seconds);
     per_target.push_back(target_json(planning_task, *t));
   }
-  std::sort(seconds.begin(), seconds.end());
   return {{"targets", todo.size()},
           {"planned", planned},
           {"strict", strict},
           {"force_limit_N", options.force_limit_N},
           {"budget_env_steps", options.max_env_steps},
           {"seeds", seeds},
-          {"median_seconds", seconds.empty() ? 0.0 : seconds[seconds.size() / 2]},
+          {"median_seconds", seconds.empty() ? 0.0 : median(seconds)},
           {"per_target", per_target}};
 }
 

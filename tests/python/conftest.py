@@ -65,3 +65,11 @@ def navigate_frames(tmp_path):
         return {**trace["frames"], "omega_index": trace["observation_names"].index("omega")}
 
     return run
+
+
+def app_or_skip(name: str) -> str:
+    """The path of C++ app `name` (guidewire_nav.app_path), skipping the test when it is not built."""
+    path = guidewire_nav.app_path(name)
+    if not path.is_file():
+        pytest.skip(f"{name} not built ({path}); set GW_BUILD_DIR")
+    return str(path)

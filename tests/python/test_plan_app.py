@@ -4,19 +4,11 @@ import json
 import subprocess
 from pathlib import Path
 
-import pytest
-
-import guidewire_nav
+from conftest import app_or_skip as app
 
 REPO = Path(__file__).resolve().parents[2]
 T1 = str(REPO / "anatomies/train/t1_straight_y/t1_straight_y.stl")
 
-
-def app(name):
-    path = guidewire_nav.app_path(name)
-    if not path.is_file():
-        pytest.skip(f"{name} not built ({path}); set GW_BUILD_DIR")
-    return str(path)
 
 
 def test_plan_writes_a_replayable_plan_and_demonstrations(tmp_path):

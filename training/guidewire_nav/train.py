@@ -132,18 +132,24 @@ def git_commit() -> str:
         return "unknown"
 
 
+def read_json_argument(flag: str, text: str, hint: str):
+    """The JSON a flag names: a file, or (starting with '{') the object itself. A missing file or text that is not
+    JSON ends the run with one line naming the flag, the text and `hint`."""
+    try:
+        return json.loads(text) if text.startswith("{") else json.loads(Path(text).read_text())
+    except FileNotFoundError:
+        raise SystemExit(f"{flag}: {text}: no such file ({hint})")
+    except json.JSONDecodeError as e:
+        raise SystemExit(f"{flag}: {text}: not JSON ({e})")
+
+
 def task_settings(s: Settings) -> dict:
     """The task JSON of --task (a file or an inline object); {} = the servers' defaults. Read once here so that
     every server, the run's settings.json and its resume check see the same object."""
     text = s.task.strip()
     if not text:
         return {}
-    try:
-        task = json.loads(text) if text.startswith("{") else json.loads(Path(text).read_text())
-    except FileNotFoundError:
-        raise SystemExit(f"--task: {text}: no such file (give a task JSON file or an inline JSON object)")
-    except json.JSONDecodeError as e:
-        raise SystemExit(f"--task: {text}: not JSON ({e})")
+    task = read_json_argument("--task", text, "give a task JSON file or an inline JSON object")
     if not isinstance(task, dict):
         raise SystemExit(f"--task: {text}: a task is a JSON object of TaskConfig fields (docs/task_settings.md)")
     return task
@@ -154,12 +160,7 @@ def with_actor_layouts(task: dict, actor_path: str) -> dict:
     it does not name them, so an actor fine-tunes in its own task (the paper's obs/1 actor needs no --task); a task
     that names other layouts is refused, naming both. A rotation actor (act/1) starting an act/2 task is the one
     mismatch allowed (export_actor.widen_to_push_pull)."""
-    try:
-        actor = json.loads(Path(actor_path).read_text())
-    except FileNotFoundError:
-        raise SystemExit(f"--init-actor: {actor_path}: no such file (give an exported actor JSON)")
-    except json.JSONDecodeError as e:
-        raise SystemExit(f"--init-actor: {actor_path}: not JSON ({e})")
+    actor = read_json_argument("--init-actor", actor_path, "give an exported actor JSON")
     if not isinstance(actor, dict):
         raise SystemExit(f"--init-actor: {actor_path}: not an actor JSON (an object with obs_layout and layers)")
     if task.get("action") == "guidewire-nav/act/2" and actor.get("action_size") == 1:

@@ -134,26 +134,10 @@ std::vector<Eigen::Vector3d> sample_points(const BranchSpec& b, const std::vecto
   return pts;
 }
 
-}  // namespace
-
-CurveLocation locate_on_branch(const BranchSpec& parent, const Eigen::Vector3d& p, double spacing) {
-  const std::vector<double> us = catmull_rom_parameters(parent.points, spacing);
-  const std::vector<Eigen::Vector3d> pts = sample_points(parent, us);
-  CurveLocation best{0.0, INFINITY};
-  for (size_t i = 0; i + 1 < pts.size(); ++i) {
-    const double t = segment_fraction(pts[i], pts[i + 1], p);
-    const double d = (pts[i] + t * (pts[i + 1] - pts[i]) - p).norm();
-    if (d < best.distance) best = {us[i] + t * (us[i + 1] - us[i]), d};
-  }
-  // Control points are exact samples: snap rounding noise onto them.
-  if (std::abs(best.u - std::round(best.u)) < 1e-6) best.u = std::round(best.u);
-  return best;
-}
-
-TreeGeometry build_tree_geometry(const TreeSpec& spec_in, double spacing) {
-  TreeSpec spec = spec_in;
+// Stage 1: each child's first point (in `spec`) moved onto its parent's curve; returns each child's
+// parent parameter (-1 for the root). Throws when a child starts off its parent.
+std::vector<double> snap_children(TreeSpec& spec, double spacing) {
   const int n = static_cast<int>(spec.branches.size());
-  // 1. Snap every child's first point onto its parent (parents come first, so they are final).
   std::vector<double> attach_u(n, -1.0);
   for (int b = 1; b < n; ++b) {
     BranchSpec& child = spec.branches[b];
@@ -169,11 +153,13 @@ TreeGeometry build_tree_geometry(const TreeSpec& spec_in, double spacing) {
     if ((child.points[1] - child.points[0]).norm() < 1e-6)
       throw SpecError("branch '" + child.name + "': its first two points coincide after snapping onto the parent");
   }
-  // 2. Sample each branch, with its children's start parameters as exact samples.
-  TreeGeometry g;
-  g.blend = spec.blend;
-  g.edge_per_radius = spec.edge_per_radius;
-  g.branches.resize(n);
+  return attach_u;
+}
+
+// Stage 2a: each branch's spline parameters to sample at, including its children's `attach_u`.
+std::vector<std::vector<double>> sample_parameters(const TreeSpec& spec, const std::vector<double>& attach_u,
+                                                   double spacing) {
+  const int n = static_cast<int>(spec.branches.size());
   std::vector<std::vector<double>> us(n);
   for (int b = 0; b < n; ++b) us[b] = catmull_rom_parameters(spec.branches[b].points, spacing);
   for (int c = 1; c < n; ++c) {
@@ -185,6 +171,13 @@ TreeGeometry build_tree_geometry(const TreeSpec& spec_in, double spacing) {
     if (it != u.begin() && std::abs(*(it - 1) - a) < 1e-9) continue;
     u.insert(it, a);
   }
+  return us;
+}
+
+// Stage 2b: g.branches from the spec sampled at `us`: names, parents, points, radii, arclengths.
+void sample_branches(const TreeSpec& spec, const std::vector<std::vector<double>>& us, TreeGeometry& g) {
+  const int n = static_cast<int>(spec.branches.size());
+  g.branches.resize(n);
   for (int b = 0; b < n; ++b) {
     const BranchSpec& s = spec.branches[b];
     BranchCurve& c = g.branches[b];
@@ -196,6 +189,12 @@ TreeGeometry build_tree_geometry(const TreeSpec& spec_in, double spacing) {
     for (size_t i = 1; i < c.points.size(); ++i)
       c.arclength[i] = c.arclength[i - 1] + (c.points[i] - c.points[i - 1]).norm();
   }
+}
+
+// Stage 2c: each child's parent_sample (its `attach_u` among the parent's `us`), added to the parent's
+// child_samples. Throws for a child at its parent's first point.
+void link_children(const std::vector<double>& attach_u, const std::vector<std::vector<double>>& us, TreeGeometry& g) {
+  const int n = static_cast<int>(g.branches.size());
   for (int b = 1; b < n; ++b) {
     BranchCurve& c = g.branches[b];
     BranchCurve& p = g.branches[c.parent];
@@ -206,6 +205,12 @@ TreeGeometry build_tree_geometry(const TreeSpec& spec_in, double spacing) {
                       "': attach it to an earlier branch, or further along the parent");
     p.child_samples.push_back(c.parent_sample);
   }
+}
+
+// Stage 2d: child_samples sorted and unique, and which ends are capped (the root's start; an end
+// where no children start). Throws for an end where a single child starts.
+void mark_caps(TreeGeometry& g) {
+  const int n = static_cast<int>(g.branches.size());
   for (int b = 0; b < n; ++b) {
     BranchCurve& c = g.branches[b];
     std::sort(c.child_samples.begin(), c.child_samples.end());
@@ -221,10 +226,11 @@ TreeGeometry build_tree_geometry(const TreeSpec& spec_in, double spacing) {
     c.cap_start = (b == 0);
     c.cap_end = !children_at_end;
   }
-  // 3. Shape checks.
-  for (const BranchCurve& c : g.branches) check_bends(c);
-  check_intersections(g.branches);
-  // 4. Caps, radius range, bounding box.
+}
+
+// Stage 4: g's radius range, the tubes' bounding box, and its caps (inlet first, then outlets).
+void measure_extent(TreeGeometry& g) {
+  const int n = static_cast<int>(g.branches.size());
   g.min_radius = INFINITY;
   g.max_radius = 0.0;
   g.bbox_min = Eigen::Vector3d::Constant(INFINITY);
@@ -245,6 +251,41 @@ TreeGeometry build_tree_geometry(const TreeSpec& spec_in, double spacing) {
     const size_t m = c.points.size();
     if (c.cap_end) g.caps.push_back({c.points.back(), (c.points[m - 1] - c.points[m - 2]).normalized(), c.radii.back(), b, false});
   }
+}
+
+}  // namespace
+
+CurveLocation locate_on_branch(const BranchSpec& parent, const Eigen::Vector3d& p, double spacing) {
+  const std::vector<double> us = catmull_rom_parameters(parent.points, spacing);
+  const std::vector<Eigen::Vector3d> pts = sample_points(parent, us);
+  CurveLocation best{0.0, INFINITY};
+  for (size_t i = 0; i + 1 < pts.size(); ++i) {
+    const double t = segment_fraction(pts[i], pts[i + 1], p);
+    const double d = (pts[i] + t * (pts[i + 1] - pts[i]) - p).norm();
+    if (d < best.distance) best = {us[i] + t * (us[i + 1] - us[i]), d};
+  }
+  // Control points are exact samples: snap rounding noise onto them.
+  if (std::abs(best.u - std::round(best.u)) < 1e-6) best.u = std::round(best.u);
+  return best;
+}
+
+TreeGeometry build_tree_geometry(const TreeSpec& spec_in, double spacing) {
+  TreeSpec spec = spec_in;
+  // 1. Snap every child's first point onto its parent (parents come first, so they are final).
+  const std::vector<double> attach_u = snap_children(spec, spacing);
+  // 2. Sample each branch, with its children's start parameters as exact samples.
+  TreeGeometry g;
+  g.blend = spec.blend;
+  g.edge_per_radius = spec.edge_per_radius;
+  const std::vector<std::vector<double>> us = sample_parameters(spec, attach_u, spacing);
+  sample_branches(spec, us, g);
+  link_children(attach_u, us, g);
+  mark_caps(g);
+  // 3. Shape checks.
+  for (const BranchCurve& c : g.branches) check_bends(c);
+  check_intersections(g.branches);
+  // 4. Caps, radius range, bounding box.
+  measure_extent(g);
   return g;
 }
 

@@ -47,79 +47,68 @@ double thinnest_chain_radius(const SkeletonTree& tree, const VesselWall& wall) {
   return thinnest;
 }
 
-}  // namespace
-
-CenterlineGraph extract_centerline(const TriangleMesh& mesh, const CenterlineOptions& opt, CenterlineStats* stats_out) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const ClosedSurface closed = close_surface(mesh);
-  CenterlineStats stats;
-  CenterlineGraph g = extract_centerline(closed, opt, &stats);
-  stats.input_faces = mesh.F.rows();
-  stats.seconds_prepare = seconds_since(t0) - stats.seconds_skeleton - stats.seconds_graph;  // closing included
-  if (stats_out) *stats_out = stats;
-  return g;
-}
-
-CenterlineGraph extract_centerline(const ClosedSurface& closed, const CenterlineOptions& opt, CenterlineStats* stats_out) {
-  if (!(opt.spacing > 0) || !(opt.edges_per_radius > 0))
-    throw std::invalid_argument("centerline options: spacing and edges_per_radius must be positive");
-  CenterlineStats stats;
-  stats.input_faces = closed.mesh.F.rows();
-  auto t0 = std::chrono::steady_clock::now();
-
-  // 1-2. A closed surface, remeshed to a size tied to the vessel radius.
-  stats.capped_holes = static_cast<int>(closed.caps.size());
-  stats.dropped_components = closed.dropped_components;
-  stats.mean_radius = closed.mean_radius();
-  stats.repairs = closed.repairs;
-  // A vessel a few hundredths of a millimetre wide is a mesh in metres (or cm): every
-  // tolerance below is in millimetres, so refuse rather than return nonsense.
-  if (stats.mean_radius < 0.05) {
+// A vessel a few hundredths of a millimetre wide is a mesh in metres (or cm): every
+// tolerance below is in millimetres, so refuse rather than return nonsense.
+void check_millimetres(double mean_radius) {
+  if (mean_radius < 0.05) {
     std::ostringstream msg;
-    msg << "vessel radius is about " << stats.mean_radius
+    msg << "vessel radius is about " << mean_radius
         << " mm: the mesh is probably not in millimetres (use --scale, e.g. 1000 for metres)";
     throw std::runtime_error(msg.str());
   }
-  // Edge length tied to the radius, but never so short that MCF gets more than
-  // `max_skeleton_faces` (an equilateral triangle of edge e has area 0.433 e^2).
-  const double finest = std::sqrt(closed.area / (0.433 * std::max(1000, opt.max_skeleton_faces)));
-  double edge = std::max(stats.mean_radius / opt.edges_per_radius, finest);
-  stats.seconds_prepare = seconds_since(t0);
+}
 
-  // 3-4. MCF skeleton of the remeshed surface, cleaned into a tree of chains; the wall of the
-  // (un-remeshed) closed input is the reference.
-  const VesselWall wall(closed.mesh);
+// Stages 3-4 at one edge length: the remeshed surface's MCF skeleton, cleaned into a tree of chains
+// (caps: the open ends' centres); adds the face count and seconds to `stats`.
+SkeletonTree skeleton_pass(const ClosedSurface& closed, double edge, const VesselWall& wall,
+                           const std::vector<Eigen::Vector3d>& caps, const SkeletonCleanup& cleanup,
+                           CenterlineStats& stats) {
+  auto t0 = std::chrono::steady_clock::now();
+  const TriangleMesh coarse = remesh_surface(closed.mesh, edge);
+  stats.skeleton_faces = coarse.F.rows();
+  stats.seconds_prepare += seconds_since(t0);
+  t0 = std::chrono::steady_clock::now();
+  const RawSkeleton raw = mcf_skeleton(coarse);
+  stats.seconds_skeleton += seconds_since(t0);
+  SkeletonTree tree =
+      clean_skeleton(raw, [&](const Eigen::Vector3d& p) { return wall.distance(p); }, caps, cleanup);
+  if (tree.chains.empty()) throw std::runtime_error("the skeleton has no branch");
+  return tree;
+}
+
+// Stages 3-4: the tree of chains at edge length `edge` (floor `finest`), skeletonised again at a
+// finer edge when its thinnest chain needs one.
+SkeletonTree skeleton_tree(const ClosedSurface& closed, const CenterlineOptions& opt, const VesselWall& wall,
+                           double edge, double finest, CenterlineStats& stats) {
   std::vector<Eigen::Vector3d> caps;
   for (const auto& c : closed.caps) caps.push_back(c.centre);
   SkeletonCleanup cleanup;
   cleanup.spur_factor = opt.spur_factor;
   cleanup.merge_factor = opt.merge_factor;
-  const auto skeleton_tree = [&] {
-    t0 = std::chrono::steady_clock::now();
-    const TriangleMesh coarse = remesh_surface(closed.mesh, edge);
-    stats.skeleton_faces = coarse.F.rows();
-    stats.seconds_prepare += seconds_since(t0);
-    t0 = std::chrono::steady_clock::now();
-    const RawSkeleton raw = mcf_skeleton(coarse);
-    stats.seconds_skeleton += seconds_since(t0);
-    SkeletonTree tree =
-        clean_skeleton(raw, [&](const Eigen::Vector3d& p) { return wall.distance(p); }, caps, cleanup);
-    if (tree.chains.empty()) throw std::runtime_error("the skeleton has no branch");
-    return tree;
-  };
-  SkeletonTree tree = skeleton_tree();
+  SkeletonTree tree = skeleton_pass(closed, edge, wall, caps, cleanup, stats);
   // A branch far thinner than the mean radius (the great vessels off an aortic arch: 2.5 times) gets
   // one or two edges across at that edge length, and MCF blurs its origin into its neighbour's.
   const double thin = thinnest_chain_radius(tree, wall);
   const double fine = std::max(2 * M_PI * thin / opt.edges_around_thinnest, finest);
   if (fine < edge) {
     edge = fine;
-    tree = skeleton_tree();
+    tree = skeleton_pass(closed, edge, wall, caps, cleanup, stats);
     stats.skeleton_passes = 2;
   }
-  t0 = std::chrono::steady_clock::now();
+  return tree;
+}
 
-  // 6 (before 5: refinement does not depend on direction). Terminal ends are free.
+// The tree's chains refined, with its junction nodes re-centred, and its node degrees.
+struct RefinedTree {
+  std::vector<RefinedBranch> refined;
+  std::vector<Eigen::Vector3d> nodes;
+  std::vector<int> degree;
+};
+
+// Stage 6: every chain refined and the junctions re-centred, close junctions merged (which changes
+// `tree`); the wall noise goes to `stats`.
+RefinedTree refine_tree(SkeletonTree& tree, const VesselWall& wall, const CenterlineOptions& opt,
+                        CenterlineStats& stats) {
   BranchRefinement refinement;
   refinement.spacing = opt.spacing;
   refinement.smoothing_iterations = opt.smoothing_iterations;
@@ -128,9 +117,10 @@ CenterlineGraph extract_centerline(const ClosedSurface& closed, const Centerline
   for (const auto& c : tree.chains) chain_points.push_back(c.points);
   refinement.wall_noise = estimate_wall_noise(chain_points, wall, opt.spacing);
   stats.wall_noise = refinement.wall_noise;
-  std::vector<RefinedBranch> refined;
-  std::vector<Eigen::Vector3d> nodes;
-  std::vector<int> degree;
+  RefinedTree r;
+  std::vector<RefinedBranch>& refined = r.refined;
+  std::vector<Eigen::Vector3d>& nodes = r.nodes;
+  std::vector<int>& degree = r.degree;
   const auto refine_and_recentre = [&] {
     degree = tree.degree();
     refined.clear();
@@ -144,9 +134,14 @@ CenterlineGraph extract_centerline(const ClosedSurface& closed, const Centerline
   // A trifurcation is two skeleton junctions that re-centring puts within a radius of each other:
   // one junction with three exits (merge_close_junctions.hpp).
   while (merge_close_junctions(tree, nodes, refined, opt.merge_factor)) refine_and_recentre();
+  return r;
+}
 
-  // 5. Inlet: the terminal nearest the given point, else the one on the widest branch
-  // (ties: lowest x, y, z, so the choice is deterministic).
+// Stage 5. Inlet: the terminal nearest the given point, else the one on the widest branch
+// (ties: lowest x, y, z, so the choice is deterministic). Returns its node.
+int choose_inlet(const SkeletonTree& tree, const RefinedTree& r, const CenterlineOptions& opt) {
+  const std::vector<RefinedBranch>& refined = r.refined;
+  const std::vector<int>& degree = r.degree;
   int inlet_node = -1;
   std::tuple<double, double, double, double> best{0, 0, 0, 0};
   for (size_t i = 0; i < tree.chains.size(); ++i) {
@@ -161,8 +156,16 @@ CenterlineGraph extract_centerline(const ClosedSurface& closed, const Centerline
     }
   }
   if (inlet_node < 0) throw std::runtime_error("the skeleton has no terminal to enter from");
+  return inlet_node;
+}
 
-  // Walk the tree from the inlet so every branch runs distally.
+// Walk the tree from the inlet so every branch runs distally: the graph's branches and
+// bifurcations (no inlet, no targets yet).
+CenterlineGraph walk_from_inlet(const SkeletonTree& tree, const RefinedTree& r, int inlet_node,
+                                const CenterlineOptions& opt) {
+  const std::vector<RefinedBranch>& refined = r.refined;
+  const std::vector<Eigen::Vector3d>& nodes = r.nodes;
+  const std::vector<int>& degree = r.degree;
   CenterlineGraph g;
   std::vector<int> arriving(tree.nodes.size(), -1);
   std::vector<char> visited(tree.nodes.size(), 0), used(tree.chains.size(), 0);
@@ -212,6 +215,11 @@ CenterlineGraph extract_centerline(const ClosedSurface& closed, const Centerline
       queue.push(far);
     }
   }
+  return g;
+}
+
+// The inlet at the root branch's start, and the direction into the vessel from it.
+void set_inlet(CenterlineGraph& g, const CenterlineOptions& opt) {
   const CenterlineBranch& root = g.branches.front();
   g.inlet.id = 0;
   g.inlet.position = root.points.front();
@@ -229,6 +237,52 @@ CenterlineGraph extract_centerline(const ClosedSurface& closed, const Centerline
     }
   }
   if ((towards - root.points.front()).norm() > 0) g.inlet_direction = (towards - root.points.front()).normalized();
+}
+
+}  // namespace
+
+CenterlineGraph extract_centerline(const TriangleMesh& mesh, const CenterlineOptions& opt, CenterlineStats* stats_out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const ClosedSurface closed = close_surface(mesh);
+  CenterlineStats stats;
+  CenterlineGraph g = extract_centerline(closed, opt, &stats);
+  stats.input_faces = mesh.F.rows();
+  stats.seconds_prepare = seconds_since(t0) - stats.seconds_skeleton - stats.seconds_graph;  // closing included
+  if (stats_out) *stats_out = stats;
+  return g;
+}
+
+CenterlineGraph extract_centerline(const ClosedSurface& closed, const CenterlineOptions& opt, CenterlineStats* stats_out) {
+  if (!(opt.spacing > 0) || !(opt.edges_per_radius > 0))
+    throw std::invalid_argument("centerline options: spacing and edges_per_radius must be positive");
+  CenterlineStats stats;
+  stats.input_faces = closed.mesh.F.rows();
+  auto t0 = std::chrono::steady_clock::now();
+
+  // 1-2. A closed surface, remeshed to a size tied to the vessel radius.
+  stats.capped_holes = static_cast<int>(closed.caps.size());
+  stats.dropped_components = closed.dropped_components;
+  stats.mean_radius = closed.mean_radius();
+  stats.repairs = closed.repairs;
+  check_millimetres(stats.mean_radius);
+  // Edge length tied to the radius, but never so short that MCF gets more than
+  // `max_skeleton_faces` (an equilateral triangle of edge e has area 0.433 e^2).
+  const double finest = std::sqrt(closed.area / (0.433 * std::max(1000, opt.max_skeleton_faces)));
+  const double edge = std::max(stats.mean_radius / opt.edges_per_radius, finest);
+  stats.seconds_prepare = seconds_since(t0);
+
+  // 3-4. MCF skeleton of the remeshed surface, cleaned into a tree of chains; the wall of the
+  // (un-remeshed) closed input is the reference.
+  const VesselWall wall(closed.mesh);
+  SkeletonTree tree = skeleton_tree(closed, opt, wall, edge, finest, stats);
+  t0 = std::chrono::steady_clock::now();
+
+  // 6 (before 5: refinement does not depend on direction). Terminal ends are free.
+  const RefinedTree refined = refine_tree(tree, wall, opt, stats);
+  // 5. Inlet, then the walk from it.
+  const int inlet_node = choose_inlet(tree, refined, opt);
+  CenterlineGraph g = walk_from_inlet(tree, refined, inlet_node, opt);
+  set_inlet(g, opt);
   number_targets(g);
   stats.seconds_graph = seconds_since(t0);
   if (stats_out) *stats_out = stats;

@@ -168,15 +168,10 @@ void least_squares_centre(const Eigen::Vector3d& node, JunctionFit& f) {
   f.centre = f.placed ? Eigen::Vector3d(f.A.ldlt().solve(f.rhs)) : node;
 }
 
-// Stage 4. Side branch off a vessel that goes on (two arms nearly opposite): the true centre is on
-// that vessel's axis, which curves between its two windows. Follow it as a cubic Hermite curve
-// between the windows and put the centre where it passes nearest to the side branch's axis. (The
-// plain least-squares point sits off a curved axis by its sagitta, and at shallow side-branch
-// angles that error is multiplied along it.)
-void side_branch_centre(const VesselWall& wall, double spacing, double wall_noise, JunctionFit& f) {
-  if (f.arms.size() != 3) return;
+// Stage 4a. The two arms of the vessel that goes on past a side branch, into bi and bj: the pair most
+// nearly opposite, or the two others of a much thinner arm; false when the junction is no side branch.
+bool parent_arms(const JunctionFit& f, size_t& bi, size_t& bj) {
   const auto& dir = f.dir;
-  size_t bi = 0, bj = 1;
   for (size_t i = 0; i < 3; ++i)
     for (size_t j = i + 1; j < 3; ++j)
       if (dir[i].dot(dir[j]) < dir[bi].dot(dir[bj])) bi = i, bj = j;
@@ -194,71 +189,115 @@ void side_branch_centre(const VesselWall& wall, double spacing, double wall_nois
   const bool thin_side = side_radius(thin) < kSideRadiusShare * std::min(side_radius(ti), side_radius(tj)) &&
                          dir[ti].dot(dir[tj]) < kCurvedParentCos;
   if (thin_side) bi = ti, bj = tj;
-  const size_t side = 3 - bi - bj;
-  if (!(thin_side || dir[bi].dot(dir[bj]) < -0.8)) return;
-  const Eigen::Vector3d P0 = f.start[bi], P1 = f.start[bj];
-  const double L = (P1 - P0).norm();
-  const Eigen::Vector3d T0 = -dir[bi] * L, T1 = dir[bj] * L;
-  auto hermite = [&](double u) {
+  return thin_side || dir[bi].dot(dir[bj]) < -0.8;
+}
+
+// The parent's axis: a cubic Hermite curve from arm bi's window start (u = 0) to arm bj's (u = 1),
+// the windows' lines beyond; `samples` is it at u = -0.5 .. 1.5 in steps of 1/200.
+struct ParentAxis {
+  const std::vector<Eigen::Vector3d>& dir;
+  size_t bi, bj;
+  Eigen::Vector3d P0, P1;
+  double L;
+  Eigen::Vector3d T0, T1;
+  std::vector<Eigen::Vector3d> samples;
+
+  ParentAxis(const JunctionFit& f, size_t i, size_t j)
+      : dir(f.dir), bi(i), bj(j), P0(f.start[bi]), P1(f.start[bj]), L((P1 - P0).norm()), T0(-dir[bi] * L),
+        T1(dir[bj] * L) {
+    for (int k = -100; k <= 300; ++k) samples.push_back(point(k / 200.0));
+  }
+  Eigen::Vector3d hermite(double u) const {
     const double u2 = u * u, u3 = u2 * u;
     return ((2 * u3 - 3 * u2 + 1) * P0 + (u3 - 2 * u2 + u) * T0 + (-2 * u3 + 3 * u2) * P1 + (u3 - u2) * T1).eval();
-  };
-  // The parent's axis: the Hermite curve between the windows, the windows' lines beyond.
-  auto parent_point = [&](double u) {
+  }
+  Eigen::Vector3d point(double u) const {
     return u < 0 ? (P0 - dir[bi] * (u * L)).eval() : u > 1 ? (P1 + dir[bj] * ((u - 1) * L)).eval() : hermite(u);
-  };
-  std::vector<Eigen::Vector3d> parent_axis;
-  for (int i = -100; i <= 300; ++i) parent_axis.push_back(parent_point(i / 200.0));
-  auto parent_distance = [&](const Eigen::Vector3d& q) {
+  }
+  // Distance from q to the sampled axis.
+  double distance(const Eigen::Vector3d& q) const {
     double best = std::numeric_limits<double>::infinity();
-    for (size_t i = 0; i + 1 < parent_axis.size(); ++i) {
-      const Eigen::Vector3d a = parent_axis[i], ab = parent_axis[i + 1] - a;
+    for (size_t i = 0; i + 1 < samples.size(); ++i) {
+      const Eigen::Vector3d a = samples[i], ab = samples[i + 1] - a;
       const double t = std::clamp((q - a).dot(ab) / std::max(ab.squaredNorm(), 1e-12), 0.0, 1.0);
       best = std::min(best, (q - a - t * ab).norm());
     }
     return best;
-  };
-  // The side branch's axis near the junction, from its own wall inside the merged lumen
-  // (merged_lumen_axis.hpp); the clean-tube line stays when that fails.
-  const double parent_r = 0.5 * (f.radius[bi] + f.radius[bj]);
+  }
+};
+
+// Stage 4b. The side branch's axis near the junction, from its own wall inside the merged lumen
+// (merged_lumen_axis.hpp), into f's mid, dir and traced arrays; the clean-tube line stays when that fails.
+void trace_side_arm(const VesselWall& wall, double spacing, double wall_noise, const ParentAxis& parent,
+                    size_t side, JunctionFit& f) {
+  const double parent_r = 0.5 * (f.radius[parent.bi] + f.radius[parent.bj]);
   const MergedLumenQuery query{
-      [&](const Eigen::Vector3d& q) { return parent_distance(q) > parent_r + 0.5 * f.radius[side]; },
-      [&](const Eigen::Vector3d& q) { return parent_distance(q) < 0.25 * parent_r; }};
+      [&](const Eigen::Vector3d& q) { return parent.distance(q) > parent_r + 0.5 * f.radius[side]; },
+      [&](const Eigen::Vector3d& q) { return parent.distance(q) < 0.25 * parent_r; }};
   const MergedLumenAxis traced =
-      trace_merged_lumen_axis(wall, f.mid[side], dir[side], f.radius[side], query, spacing, 25.0, wall_noise);
+      trace_merged_lumen_axis(wall, f.mid[side], f.dir[side], f.radius[side], query, spacing, 25.0, wall_noise);
   if (traced.ok) {
     f.mid[side] = traced.point;
     f.dir[side] = traced.direction;
     f.traced_centres[side] = traced.centres;
     f.traced_radii[side] = traced.radii;
   }
-  f.side_case = true;
-  f.side_arm = side;
+}
+
+// Stage 4c. The parameter `best` where the parent's axis passes nearest to the side arm's axis, and
+// that distance `best_gap`.
+void nearest_on_parent(const ParentAxis& parent, const JunctionFit& f, size_t side, double& best, double& best_gap) {
   auto gap = [&](double u) {
-    const Eigen::Vector3d q = parent_point(u) - f.mid[side];
+    const Eigen::Vector3d q = parent.point(u) - f.mid[side];
     return (q - q.dot(f.dir[side]) * f.dir[side]).norm();
   };
   // The centre may lie a little inside either parent window (a shallow branch's merged lumen
   // can push the proximal window's clean start right up to the true junction).
-  double best = 0.0, best_gap = gap(0.0);
+  best = 0.0, best_gap = gap(0.0);
   for (int i = -100; i <= 300; ++i)
     if (gap(i / 200.0) < best_gap) best_gap = gap(i / 200.0), best = i / 200.0;
   for (double h = 1.0 / 200; h > 1e-6; h *= 0.5)
     for (double u : {best - h, best + h})
       if (u >= -0.5 && u <= 1.5 && gap(u) < best_gap) best_gap = gap(u), best = u;
-  if (!(best > -0.5 && best < 1.5 && best_gap < 1.5 * f.widest)) return;
-  f.centre = parent_point(best);
+}
+
+// Stage 4d. The centre at `best` on the parent's axis, with lead-ins along that axis to both windows
+// (f.lead) and a cut past the centre for a window it fell into.
+void place_on_parent(const ParentAxis& parent, double best, double spacing, JunctionFit& f) {
+  const size_t bi = parent.bi, bj = parent.bj;
+  const double L = parent.L;
+  f.centre = parent.point(best);
   f.placed = true;
   const int n = std::max(2, static_cast<int>(std::round(L / spacing)));
   // Lead-ins along the parent axis to each window start (excluded), skipping the part of a
   // window the centre fell into: that arm is then cut past the centre.
-  for (int i = static_cast<int>(std::floor(best * n)); i > 0; --i) f.lead[bi].push_back(parent_point(double(i) / n));
-  for (int i = static_cast<int>(std::ceil(best * n)); i < n; ++i) f.lead[bj].push_back(parent_point(double(i) / n));
+  for (int i = static_cast<int>(std::floor(best * n)); i > 0; --i) f.lead[bi].push_back(parent.point(double(i) / n));
+  for (int i = static_cast<int>(std::ceil(best * n)); i < n; ++i) f.lead[bj].push_back(parent.point(double(i) / n));
   if (best > 1.0) f.cut[bj] += (best - 1.0) * L + spacing;
   if (best < 0.0) f.cut[bi] += -best * L + spacing;
   // lead[] excludes the centre and the window start themselves.
   if (!f.lead[bi].empty() && (f.lead[bi].front() - f.centre).norm() < 0.25 * spacing) f.lead[bi].erase(f.lead[bi].begin());
   if (!f.lead[bj].empty() && (f.lead[bj].front() - f.centre).norm() < 0.25 * spacing) f.lead[bj].erase(f.lead[bj].begin());
+}
+
+// Stage 4. Side branch off a vessel that goes on (two arms nearly opposite): the true centre is on
+// that vessel's axis, which curves between its two windows. Follow it as a cubic Hermite curve
+// between the windows and put the centre where it passes nearest to the side branch's axis. (The
+// plain least-squares point sits off a curved axis by its sagitta, and at shallow side-branch
+// angles that error is multiplied along it.)
+void side_branch_centre(const VesselWall& wall, double spacing, double wall_noise, JunctionFit& f) {
+  if (f.arms.size() != 3) return;
+  size_t bi = 0, bj = 1;
+  if (!parent_arms(f, bi, bj)) return;
+  const size_t side = 3 - bi - bj;
+  const ParentAxis parent(f, bi, bj);
+  trace_side_arm(wall, spacing, wall_noise, parent, side, f);
+  f.side_case = true;
+  f.side_arm = side;
+  double best = 0.0, best_gap = 0.0;
+  nearest_on_parent(parent, f, side, best, best_gap);
+  if (!(best > -0.5 && best < 1.5 && best_gap < 1.5 * f.widest)) return;
+  place_on_parent(parent, best, spacing, f);
 }
 
 // Stage 5. Every other arm is traced back to the centre through the merged lumen too: its own wall is

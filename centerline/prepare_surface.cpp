@@ -279,20 +279,9 @@ void orient_pieces_outward(SMesh& sm) {
   sm.remove_property_map(component);
 }
 
-}  // namespace
-
-ClosedSurface close_surface(const TriangleMesh& mesh, const SurfaceRepairOptions& options) {
-  if (mesh.F.rows() == 0) throw std::runtime_error("the surface has no faces");
-  if (!mesh.V.allFinite()) throw std::runtime_error("the surface has non-finite vertex coordinates");
-  ClosedSurface out;
-  auto t0 = std::chrono::steady_clock::now();
-  auto lap = [&](const char* stage) {
-    const auto t = std::chrono::steady_clock::now();
-    out.stage_seconds.emplace_back(stage, std::chrono::duration<double>(t - t0).count());
-    t0 = t;
-  };
-
-  // build
+// Stage "build": the input as a halfedge mesh, through the soup repair (recorded in `out`) when its
+// faces do not form one consistently oriented 2-manifold.
+SMesh build_surface(const TriangleMesh& mesh, ClosedSurface& out) {
   SMesh sm;
   if (!build_directly(mesh, sm)) {
     sm = soup_to_surface_mesh(mesh, &out.split_vertices);
@@ -303,17 +292,12 @@ ClosedSurface close_surface(const TriangleMesh& mesh, const SurfaceRepairOptions
                                               : std::string()));
   }
   if (sm.number_of_faces() == 0) throw std::runtime_error("the surface has no usable faces");
-  lap("build");
-  // islands
-  out.kept_pieces = drop_islands(sm, options, out);
-  if (sm.number_of_faces() < 4) throw std::runtime_error("the surface has fewer than 4 usable faces");
-  lap("islands");
-  // cap
-  cap_holes(sm, out);
-  if (!CGAL::is_closed(sm) || !CGAL::is_triangle_mesh(sm))
-    throw std::runtime_error("the surface cannot be closed into a triangle 2-manifold (holes that cannot be capped)");
-  lap("cap");
-  // wrap
+  return sm;
+}
+
+// Stage "wrap": a surface of several pieces or with makeshift fan caps (or any, when asked for)
+// becomes its alpha wrap, in `sm` and out.mesh; throws when it needs one and wrapping is off.
+void wrap_if_needed(SMesh& sm, const SurfaceRepairOptions& options, ClosedSurface& out) {
   const bool wrap = options.force_wrap || out.kept_pieces > 1 || out.fan_caps > 0;
   if (wrap) {
     const std::string why = options.force_wrap      ? "asked for"
@@ -333,10 +317,12 @@ ClosedSurface close_surface(const TriangleMesh& mesh, const SurfaceRepairOptions
                           fixed(out.wrap_offset, 3) + " (thin vessels' radius " + fixed(scale.small_radius, 3) + ")");
     sm = to_surface_mesh(out.mesh);
   }
-  lap("wrap");
-  // orient. Border halfedges of an outward-oriented surface run counter-clockwise seen from
-  // outside the hole, so the loop's area vector points out of the vessel; flip the cap normals
-  // with the surface when it had to be reversed.
+}
+
+// Stage "orient". Border halfedges of an outward-oriented surface run counter-clockwise seen from
+// outside the hole, so the loop's area vector points out of the vessel; flip the cap normals
+// with the surface when it had to be reversed.
+void orient_outward(SMesh& sm, ClosedSurface& out) {
   if (PMP::volume(sm) < 0) {
     PMP::reverse_face_orientations(sm);
     for (auto& cap : out.caps) cap.normal = -cap.normal;
@@ -345,9 +331,12 @@ ClosedSurface close_surface(const TriangleMesh& mesh, const SurfaceRepairOptions
       out.repairs.push_back("normals pointed into the lumen: reversed");
     }
   }
-  lap("orient");
-  // smooth: a voxel staircase (marching cubes of a binary label map) breaks every round-section
-  // fit of the centerline and snags the wire; Taubin smoothing removes it and keeps the tube.
+}
+
+// Stage "smooth": out.mesh from `sm`; a voxel staircase (marching cubes of a binary label map) breaks
+// every round-section fit of the centerline and snags the wire; Taubin smoothing removes it and keeps
+// the tube. Then out.volume and out.area, which must be positive.
+void smooth_and_measure(SMesh& sm, const SurfaceRepairOptions& options, ClosedSurface& out) {
   out.mesh = to_triangle_mesh(sm);
   out.lattice_share = lattice_area_share(out.mesh);
   if (out.lattice_share > options.staircase_share && options.staircase_passes > 0) {
@@ -361,6 +350,37 @@ ClosedSurface close_surface(const TriangleMesh& mesh, const SurfaceRepairOptions
   out.volume = PMP::volume(sm);
   out.area = PMP::area(sm);
   if (!(out.volume > 0) || !(out.area > 0)) throw std::runtime_error("the surface encloses no volume (a single open sheet?)");
+}
+
+}  // namespace
+
+ClosedSurface close_surface(const TriangleMesh& mesh, const SurfaceRepairOptions& options) {
+  if (mesh.F.rows() == 0) throw std::runtime_error("the surface has no faces");
+  if (!mesh.V.allFinite()) throw std::runtime_error("the surface has non-finite vertex coordinates");
+  ClosedSurface out;
+  auto t0 = std::chrono::steady_clock::now();
+  auto lap = [&](const char* stage) {
+    const auto t = std::chrono::steady_clock::now();
+    out.stage_seconds.emplace_back(stage, std::chrono::duration<double>(t - t0).count());
+    t0 = t;
+  };
+
+  SMesh sm = build_surface(mesh, out);
+  lap("build");
+  // islands
+  out.kept_pieces = drop_islands(sm, options, out);
+  if (sm.number_of_faces() < 4) throw std::runtime_error("the surface has fewer than 4 usable faces");
+  lap("islands");
+  // cap
+  cap_holes(sm, out);
+  if (!CGAL::is_closed(sm) || !CGAL::is_triangle_mesh(sm))
+    throw std::runtime_error("the surface cannot be closed into a triangle 2-manifold (holes that cannot be capped)");
+  lap("cap");
+  wrap_if_needed(sm, options, out);
+  lap("wrap");
+  orient_outward(sm, out);
+  lap("orient");
+  smooth_and_measure(sm, options, out);
   lap("smooth");
   return out;
 }

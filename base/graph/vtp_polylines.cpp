@@ -346,116 +346,153 @@ void parse_document(Document& doc, pugi::xml_document& xml) {
   }
 }
 
+// The whole file's bytes.
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw VtpError("cannot open file");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// <VTKFile>'s attributes: anything but PolyData is refused; its byte order, header type and
+// compressor go to doc.encoding.
+void read_encoding(const pugi::xml_node& root, Document& doc) {
+  const std::string type = root.attribute("type").as_string();
+  if (type != "PolyData") throw VtpError("a VTK '" + type + "' file, not PolyData");
+  const std::string order = root.attribute("byte_order").as_string("LittleEndian");
+  if (order != "LittleEndian" && order != "BigEndian") throw VtpError("unknown byte_order '" + order + "'");
+  doc.encoding.big_endian = order == "BigEndian";
+  const std::string header = root.attribute("header_type").as_string("UInt32");
+  if (header != "UInt32" && header != "UInt64") throw VtpError("header_type '" + header + "' (UInt32 or UInt64)");
+  doc.encoding.header_bytes = header == "UInt64" ? 8 : 4;
+  const std::string compressor = root.attribute("compressor").as_string();
+  if (!compressor.empty() && compressor != "vtkZLibDataCompressor")
+    throw VtpError("compressor '" + compressor + "' is not supported (vtkZLibDataCompressor or none)");
+  doc.encoding.zlib = !compressor.empty();
+}
+
+// out.space from <PolyData>'s field data "SPACE" (Slicer's): LPS, RAS, or "" for neither.
+void read_space(const Document& doc, const pugi::xml_node& poly, VtpPolylines& out) {
+  if (const pugi::xml_node space = named_array(poly.child("FieldData"), "SPACE")) {
+    const std::string s = string_array(doc, space, array_label(space, "field data"));
+    out.space = s.find("LPS") != std::string::npos ? "LPS" : s.find("RAS") != std::string::npos ? "RAS" : "";
+  }
+}
+
+// A piece's n (> 0) points, appended to out.points; `where` prefixes messages.
+void read_piece_points(const Document& doc, const pugi::xml_node& piece, size_t n, const std::string& where,
+                       VtpPolylines& out) {
+  const pugi::xml_node pa = piece.child("Points").child("DataArray");
+  if (!pa) throw VtpError(where + "NumberOfPoints is " + std::to_string(n) + " but there is no <Points> array");
+  const std::string what = where + "array 'Points'";
+  if (pa.attribute("NumberOfComponents").as_int(1) != 3)
+    throw VtpError(what + ": " + std::string(pa.attribute("NumberOfComponents").as_string("1")) +
+                   " components, not 3");
+  const std::vector<double> xyz = array_values(doc, pa, what);
+  if (xyz.size() != 3 * n)
+    throw VtpError(what + ": " + std::to_string(xyz.size()) + " values for " + std::to_string(n) +
+                   " points (truncated?)");
+  for (size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d p(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    if (!p.allFinite()) throw VtpError(what + ": point " + std::to_string(i) + " is not finite");
+    out.points.push_back(p);
+  }
+}
+
+// A piece's `wanted` point arrays (n values each), appended to out.point_arrays.
+void read_piece_arrays(const Document& doc, const pugi::xml_node& piece, size_t n, const std::string& where,
+                       const std::vector<std::string>& wanted, VtpPolylines& out) {
+  const pugi::xml_node pd = piece.child("PointData");
+  for (const std::string& name : wanted) {
+    const pugi::xml_node a = named_array(pd, name);
+    if (!a)
+      throw VtpError(where + "point array '" + name + "' is missing (point arrays here: " + array_names(pd) + ")");
+    const std::string what = where + array_label(a, "point");
+    if (a.attribute("NumberOfComponents").as_int(1) != 1)
+      throw VtpError(what + ": " + std::string(a.attribute("NumberOfComponents").value()) + " components, not 1");
+    const std::vector<double> v = array_values(doc, a, what);
+    if (v.size() != n)
+      throw VtpError(what + ": " + std::to_string(v.size()) + " values for " + std::to_string(n) + " points");
+    auto& dst = out.point_arrays[name];
+    dst.insert(dst.end(), v.begin(), v.end());
+  }
+}
+
+// A piece's polyline cells, appended to out.lines as ids into out.points (the piece's n points
+// start at first_point).
+void read_piece_lines(const Document& doc, const pugi::xml_node& piece, size_t n, size_t first_point,
+                      const std::string& where, VtpPolylines& out) {
+  const size_t lines = count_attribute(piece, "NumberOfLines");
+  if (lines == 0) return;
+  const pugi::xml_node la = piece.child("Lines");
+  const pugi::xml_node ca = named_array(la, "connectivity");
+  const pugi::xml_node oa = named_array(la, "offsets");
+  if (!ca || !oa)
+    throw VtpError(where + "NumberOfLines is " + std::to_string(lines) +
+                   " but <Lines> lacks its 'connectivity' or 'offsets' array (has: " + array_names(la) + ")");
+  const std::vector<double> conn = array_values(doc, ca, where + "lines array 'connectivity'");
+  std::vector<double> offsets = array_values(doc, oa, where + "lines array 'offsets'");
+  // VTK writes one end offset per cell; a leading 0 (the in-memory layout) is accepted too.
+  if (offsets.size() == lines + 1 && offsets.front() == 0.0) offsets.erase(offsets.begin());
+  if (offsets.size() != lines)
+    throw VtpError(where + "lines array 'offsets': " + std::to_string(offsets.size()) + " values for " +
+                   std::to_string(lines) + " lines");
+  double begin = 0;
+  for (size_t c = 0; c < lines; ++c) {
+    const double end = offsets[c];
+    if (!(end >= begin && end <= static_cast<double>(conn.size())) || end != std::floor(end))
+      throw VtpError(where + "lines array 'offsets': offset " + std::to_string(end) + " of line " +
+                     std::to_string(c) + " is out of order or past the " + std::to_string(conn.size()) +
+                     " connectivity entries");
+    std::vector<std::int64_t> ids;
+    for (auto i = static_cast<size_t>(begin); i < static_cast<size_t>(end); ++i) {
+      const double id = conn[i];
+      if (!(id >= 0 && id < static_cast<double>(n)) || id != std::floor(id))
+        throw VtpError(where + "lines array 'connectivity': point id " + std::to_string(id) + " of line " +
+                       std::to_string(c) + " is not one of the " + std::to_string(n) + " points");
+      ids.push_back(static_cast<std::int64_t>(first_point) + static_cast<std::int64_t>(id));
+    }
+    out.lines.push_back(std::move(ids));
+    begin = end;
+  }
+}
+
+// One <Piece>: its points, its `wanted` point arrays and its lines, appended to `out`.
+void read_piece(const Document& doc, const pugi::xml_node& piece, const std::string& where,
+                const std::vector<std::string>& wanted, VtpPolylines& out) {
+  const size_t n = count_attribute(piece, "NumberOfPoints");
+  const size_t first_point = out.points.size();
+  if (n > 0) read_piece_points(doc, piece, n, where, out);
+  read_piece_arrays(doc, piece, n, where, wanted, out);
+  read_piece_lines(doc, piece, n, first_point, where, out);
+}
+
 }  // namespace
 
 VtpPolylines read_vtp_polylines(const std::string& path, const std::vector<std::string>& wanted) {
   try {
     Document doc;
     doc.path = path;
-    {
-      std::ifstream in(path, std::ios::binary);
-      if (!in) throw VtpError("cannot open file");
-      std::ostringstream s;
-      s << in.rdbuf();
-      doc.data = s.str();
-    }
+    doc.data = read_file(path);
     if (doc.data.empty()) throw VtpError("empty file");
     pugi::xml_document xml;
     parse_document(doc, xml);
     const pugi::xml_node root = xml.child("VTKFile");
     if (!root) throw VtpError("not a VTK XML file (no <VTKFile> element)");
-    const std::string type = root.attribute("type").as_string();
-    if (type != "PolyData") throw VtpError("a VTK '" + type + "' file, not PolyData");
-    const std::string order = root.attribute("byte_order").as_string("LittleEndian");
-    if (order != "LittleEndian" && order != "BigEndian") throw VtpError("unknown byte_order '" + order + "'");
-    doc.encoding.big_endian = order == "BigEndian";
-    const std::string header = root.attribute("header_type").as_string("UInt32");
-    if (header != "UInt32" && header != "UInt64") throw VtpError("header_type '" + header + "' (UInt32 or UInt64)");
-    doc.encoding.header_bytes = header == "UInt64" ? 8 : 4;
-    const std::string compressor = root.attribute("compressor").as_string();
-    if (!compressor.empty() && compressor != "vtkZLibDataCompressor")
-      throw VtpError("compressor '" + compressor + "' is not supported (vtkZLibDataCompressor or none)");
-    doc.encoding.zlib = !compressor.empty();
+    read_encoding(root, doc);
 
     const pugi::xml_node poly = root.child("PolyData");
     if (!poly || !poly.child("Piece")) throw VtpError("no <PolyData><Piece> element");
     VtpPolylines out;
     for (const std::string& name : wanted) out.point_arrays[name];
-    if (const pugi::xml_node space = named_array(poly.child("FieldData"), "SPACE")) {
-      const std::string s = string_array(doc, space, array_label(space, "field data"));
-      out.space = s.find("LPS") != std::string::npos ? "LPS" : s.find("RAS") != std::string::npos ? "RAS" : "";
-    }
+    read_space(doc, poly, out);
 
     int piece_index = 0;
     for (pugi::xml_node piece : poly.children("Piece")) {
       const std::string where = poly.select_nodes("Piece").size() > 1 ? "piece " + std::to_string(piece_index) + ": " : "";
       ++piece_index;
-      const size_t n = count_attribute(piece, "NumberOfPoints");
-      const size_t first_point = out.points.size();
-      if (n > 0) {
-        const pugi::xml_node pa = piece.child("Points").child("DataArray");
-        if (!pa) throw VtpError(where + "NumberOfPoints is " + std::to_string(n) + " but there is no <Points> array");
-        const std::string what = where + "array 'Points'";
-        if (pa.attribute("NumberOfComponents").as_int(1) != 3)
-          throw VtpError(what + ": " + std::string(pa.attribute("NumberOfComponents").as_string("1")) +
-                         " components, not 3");
-        const std::vector<double> xyz = array_values(doc, pa, what);
-        if (xyz.size() != 3 * n)
-          throw VtpError(what + ": " + std::to_string(xyz.size()) + " values for " + std::to_string(n) +
-                         " points (truncated?)");
-        for (size_t i = 0; i < n; ++i) {
-          const Eigen::Vector3d p(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-          if (!p.allFinite()) throw VtpError(what + ": point " + std::to_string(i) + " is not finite");
-          out.points.push_back(p);
-        }
-      }
-      const pugi::xml_node pd = piece.child("PointData");
-      for (const std::string& name : wanted) {
-        const pugi::xml_node a = named_array(pd, name);
-        if (!a)
-          throw VtpError(where + "point array '" + name + "' is missing (point arrays here: " + array_names(pd) + ")");
-        const std::string what = where + array_label(a, "point");
-        if (a.attribute("NumberOfComponents").as_int(1) != 1)
-          throw VtpError(what + ": " + std::string(a.attribute("NumberOfComponents").value()) + " components, not 1");
-        const std::vector<double> v = array_values(doc, a, what);
-        if (v.size() != n)
-          throw VtpError(what + ": " + std::to_string(v.size()) + " values for " + std::to_string(n) + " points");
-        auto& dst = out.point_arrays[name];
-        dst.insert(dst.end(), v.begin(), v.end());
-      }
-      const size_t lines = count_attribute(piece, "NumberOfLines");
-      if (lines == 0) continue;
-      const pugi::xml_node la = piece.child("Lines");
-      const pugi::xml_node ca = named_array(la, "connectivity");
-      const pugi::xml_node oa = named_array(la, "offsets");
-      if (!ca || !oa)
-        throw VtpError(where + "NumberOfLines is " + std::to_string(lines) +
-                       " but <Lines> lacks its 'connectivity' or 'offsets' array (has: " + array_names(la) + ")");
-      const std::vector<double> conn = array_values(doc, ca, where + "lines array 'connectivity'");
-      std::vector<double> offsets = array_values(doc, oa, where + "lines array 'offsets'");
-      // VTK writes one end offset per cell; a leading 0 (the in-memory layout) is accepted too.
-      if (offsets.size() == lines + 1 && offsets.front() == 0.0) offsets.erase(offsets.begin());
-      if (offsets.size() != lines)
-        throw VtpError(where + "lines array 'offsets': " + std::to_string(offsets.size()) + " values for " +
-                       std::to_string(lines) + " lines");
-      double begin = 0;
-      for (size_t c = 0; c < lines; ++c) {
-        const double end = offsets[c];
-        if (!(end >= begin && end <= static_cast<double>(conn.size())) || end != std::floor(end))
-          throw VtpError(where + "lines array 'offsets': offset " + std::to_string(end) + " of line " +
-                         std::to_string(c) + " is out of order or past the " + std::to_string(conn.size()) +
-                         " connectivity entries");
-        std::vector<std::int64_t> ids;
-        for (auto i = static_cast<size_t>(begin); i < static_cast<size_t>(end); ++i) {
-          const double id = conn[i];
-          if (!(id >= 0 && id < static_cast<double>(n)) || id != std::floor(id))
-            throw VtpError(where + "lines array 'connectivity': point id " + std::to_string(id) + " of line " +
-                           std::to_string(c) + " is not one of the " + std::to_string(n) + " points");
-          ids.push_back(static_cast<std::int64_t>(first_point) + static_cast<std::int64_t>(id));
-        }
-        out.lines.push_back(std::move(ids));
-        begin = end;
-      }
+      read_piece(doc, piece, where, wanted, out);
     }
     if (out.lines.empty()) throw VtpError("no lines (polyline cells): not a centerline file?");
     return out;

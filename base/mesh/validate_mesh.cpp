@@ -49,15 +49,9 @@ std::string fmt(double x) {
   return s.str();
 }
 
-}  // namespace
-
-MeshReport validate_mesh(const TriangleMesh& mesh) {
-  MeshReport r;
-  r.vertices = mesh.V.rows();
-  r.faces = mesh.F.rows();
-  const size_t nv = static_cast<size_t>(mesh.V.rows());
-
-  // Bounds over finite vertices only, so one NaN does not hide the real size.
+// Bounds over finite vertices only, so one NaN does not hide the real size: r's bbox, max_extent and
+// non_finite_vertices; false when no vertex is finite.
+bool measure_bounds(const TriangleMesh& mesh, MeshReport& r) {
   bool any_finite = false;
   for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) {
     const Eigen::Vector3d p = mesh.V.row(v).transpose();
@@ -71,11 +65,14 @@ MeshReport validate_mesh(const TriangleMesh& mesh) {
     any_finite = true;
   }
   r.max_extent = (r.bbox_max - r.bbox_min).maxCoeff();
-  const double area_eps = 1e-14 * std::max(r.max_extent * r.max_extent, 1e-300);
+  return any_finite;
+}
 
-  std::unordered_map<std::uint64_t, int> edge_use;
-  edge_use.reserve(static_cast<size_t>(3 * r.faces));
-  UnionFind pieces(nv);
+// Every face: bad references (errors), degenerate faces, the signed volume into `r`; each edge's
+// face count into `edge_use` and the faces' vertices joined in `pieces`.
+void scan_faces(const TriangleMesh& mesh, MeshReport& r, std::unordered_map<std::uint64_t, int>& edge_use,
+                UnionFind& pieces) {
+  const double area_eps = 1e-14 * std::max(r.max_extent * r.max_extent, 1e-300);
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
     const int a = mesh.F(f, 0), b = mesh.F(f, 1), c = mesh.F(f, 2);
     if (std::min({a, b, c}) < 0 || std::max({a, b, c}) >= r.vertices) {
@@ -93,7 +90,10 @@ MeshReport validate_mesh(const TriangleMesh& mesh) {
     // Divergence theorem: sum of signed tetrahedra to the origin.
     r.volume += pa.dot(pb.cross(pc)) / 6.0;
   }
+}
 
+// r's boundary edges and loops and its non-manifold edges, from each edge's face count.
+void count_edges(const std::unordered_map<std::uint64_t, int>& edge_use, size_t nv, MeshReport& r) {
   std::vector<std::pair<int, int>> boundary;
   for (const auto& [key, uses] : edge_use) {
     if (uses == 1) boundary.emplace_back(int(key >> 32), int(key & 0xffffffffu));
@@ -101,14 +101,20 @@ MeshReport validate_mesh(const TriangleMesh& mesh) {
   }
   r.boundary_edges = static_cast<long>(boundary.size());
   r.boundary_loops = count_boundary_loops(boundary, nv);
+}
 
+// r.components: the pieces (of `pieces`) that hold a vertex some face uses.
+void count_components(const TriangleMesh& mesh, size_t nv, UnionFind& pieces, MeshReport& r) {
   std::vector<char> used(nv, 0);
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
     for (int c = 0; c < 3; ++c)
       if (mesh.F(f, c) >= 0 && mesh.F(f, c) < r.vertices) used[mesh.F(f, c)] = 1;
   for (size_t v = 0; v < nv; ++v)
     if (used[v] && pieces.find(static_cast<int>(v)) == static_cast<int>(v)) ++r.components;
+}
 
+// r's errors and warnings from its counts (the unit warnings only when some vertex is finite).
+void add_messages(bool any_finite, MeshReport& r) {
   if (r.faces == 0) r.errors.push_back("no faces");
   if (r.non_finite_vertices > 0)
     r.errors.push_back(std::to_string(r.non_finite_vertices) + " vertices have NaN or infinite coordinates");
@@ -130,6 +136,23 @@ MeshReport validate_mesh(const TriangleMesh& mesh) {
   else if (r.max_extent > 5000.0)
     r.warnings.push_back("mesh is " + fmt(r.max_extent) +
                          " units across: probably in micrometres; use --scale 0.001 for millimetres");
+}
+
+}  // namespace
+
+MeshReport validate_mesh(const TriangleMesh& mesh) {
+  MeshReport r;
+  r.vertices = mesh.V.rows();
+  r.faces = mesh.F.rows();
+  const size_t nv = static_cast<size_t>(mesh.V.rows());
+  const bool any_finite = measure_bounds(mesh, r);
+  std::unordered_map<std::uint64_t, int> edge_use;
+  edge_use.reserve(static_cast<size_t>(3 * r.faces));
+  UnionFind pieces(nv);
+  scan_faces(mesh, r, edge_use, pieces);
+  count_edges(edge_use, nv, r);
+  count_components(mesh, nv, pieces, r);
+  add_messages(any_finite, r);
   return r;
 }
 

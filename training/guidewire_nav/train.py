@@ -495,7 +495,9 @@ def make_model(s: Settings, out: Path, vec_env, eval_env, resume_from) -> SACWit
     if resume_from:  # the run's own state: networks, optimisers, entropy coefficient, step counter, buffer
         model = SACWithActorRate.load(resume_from[1], env=vec_env, **sac_settings)
         model.load_replay_buffer(resume_from[2])
-        print(f"[train] resumed {out} at step {model.num_timesteps} ({model.replay_buffer.size()} transitions "
+        # SB3 keeps one buffer row per vector step, n_envs transitions in each
+        transitions = model.replay_buffer.size() * model.replay_buffer.n_envs
+        print(f"[train] resumed {out} at step {model.num_timesteps} ({transitions} transitions "
               f"in the replay buffer)", file=sys.stderr)
     elif s.init_model:  # fine-tuning: the saved networks (and learned entropy coefficient), a fresh buffer
         model = SACWithActorRate.load(s.init_model, env=vec_env, **sac_settings)

@@ -57,6 +57,67 @@ double peak_rss_mb() {
   return double(u.ru_maxrss) / 1024.0;
 }
 
+// --vmtk's results by anatomy name (an empty object without the flag); throws when the file cannot be opened.
+nlohmann::json read_vmtk_results(const std::string& vmtk) {
+  nlohmann::json vmtk_results = nlohmann::json::object();
+  if (!vmtk.empty()) {
+    std::ifstream in(vmtk);
+    if (!in) throw std::runtime_error(vmtk + ": cannot open");
+    vmtk_results = nlohmann::json::parse(in);
+  }
+  return vmtk_results;
+}
+
+// `repeat` extractions of the surface: the last one's graph and stats, and the median (wall, cpu) seconds.
+std::pair<double, double> timed_extractions(const gw::ClosedSurface& surface, const gw::CenterlineOptions& options,
+                                            int repeat, gw::CenterlineGraph& graph, gw::CenterlineStats& stats) {
+  std::vector<std::pair<double, double>> times;  // wall, cpu
+  for (int r = 0; r < repeat; ++r) {
+    const auto w0 = std::chrono::steady_clock::now();
+    const std::clock_t c0 = std::clock();
+    graph = gw::extract_centerline(surface, options, &stats);
+    times.emplace_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count(),
+                       double(std::clock() - c0) / CLOCKS_PER_SEC);
+  }
+  std::sort(times.begin(), times.end());
+  return times[times.size() / 2];
+}
+
+// One anatomy's row: intake and extraction times, MCF stats, accuracy against the truth, VMTK's beside
+// it when vmtk_results has the anatomy, and the peak memory so far.
+nlohmann::json anatomy_row(const gw::AnatomyEntry& a, int repeat, const nlohmann::json& vmtk_results) {
+  // From the file to a closed surface (load, units, repairs): timed once, reported apart.
+  const auto i0 = std::chrono::steady_clock::now();
+  const std::clock_t ic0 = std::clock();
+  const gw::IntakeSurface surface = gw::intake_surface(a.mesh);
+  const double intake_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - i0).count();
+  const double intake_cpu = double(std::clock() - ic0) / CLOCKS_PER_SEC;
+  const gw::CenterlineGraph truth = gw::read_centerline(a.truth);
+  gw::CenterlineOptions options;
+  options.inlet = truth.inlet.position;
+  gw::CenterlineGraph graph;
+  gw::CenterlineStats stats;
+  const auto median = timed_extractions(surface.closed, options, repeat, graph, stats);
+  nlohmann::json row = {{"name", a.name},
+                        {"set", a.set},
+                        {"faces", surface.input.faces},
+                        {"repairs", surface.repairs},
+                        {"seconds_intake_wall", intake_wall},
+                        {"seconds_intake_cpu", intake_cpu},
+                        {"seconds_file_to_targets_cpu", intake_cpu + median.second},
+                        {"mcf_faces", stats.skeleton_faces},
+                        {"mcf_passes", stats.skeleton_passes},
+                        {"seconds_wall", median.first},
+                        {"seconds_cpu", median.second},
+                        {"seconds_prepare", stats.seconds_prepare},
+                        {"seconds_skeleton", stats.seconds_skeleton},
+                        {"seconds_graph", stats.seconds_graph},
+                        {"accuracy", nlohmann::json::parse(gw::accuracy_to_json(gw::compare_centerlines(graph, truth)))}};
+  if (vmtk_results.contains(a.name)) row["vmtk"] = vmtk_row(vmtk_results[a.name], truth);
+  row["peak_rss_mb_so_far"] = peak_rss_mb();
+  return row;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -70,57 +131,14 @@ int main(int argc, char** argv) {
   app.add_option("--vmtk", vmtk, "JSON from vmtk_centerline.py to report side by side");
   CLI11_PARSE(app, argc, argv);
   try {
-    nlohmann::json vmtk_results = nlohmann::json::object();
-    if (!vmtk.empty()) {
-      std::ifstream in(vmtk);
-      if (!in) throw std::runtime_error(vmtk + ": cannot open");
-      vmtk_results = nlohmann::json::parse(in);
-    }
+    const nlohmann::json vmtk_results = read_vmtk_results(vmtk);
     nlohmann::json out;
     out["benchmark"] = "centerline";
     out["hardware_threads"] = std::thread::hardware_concurrency();
     out["anatomies"] = nlohmann::json::array();
     for (const auto& a : gw::read_anatomy_index(index, root)) {
       if (!only.empty() && a.name != only) continue;
-      // From the file to a closed surface (load, units, repairs): timed once, reported apart.
-      const auto i0 = std::chrono::steady_clock::now();
-      const std::clock_t ic0 = std::clock();
-      const gw::IntakeSurface surface = gw::intake_surface(a.mesh);
-      const double intake_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - i0).count();
-      const double intake_cpu = double(std::clock() - ic0) / CLOCKS_PER_SEC;
-      const gw::CenterlineGraph truth = gw::read_centerline(a.truth);
-      gw::CenterlineOptions options;
-      options.inlet = truth.inlet.position;
-      std::vector<std::pair<double, double>> times;  // wall, cpu
-      gw::CenterlineGraph graph;
-      gw::CenterlineStats stats;
-      for (int r = 0; r < repeat; ++r) {
-        const auto w0 = std::chrono::steady_clock::now();
-        const std::clock_t c0 = std::clock();
-        graph = gw::extract_centerline(surface.closed, options, &stats);
-        times.emplace_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count(),
-                           double(std::clock() - c0) / CLOCKS_PER_SEC);
-      }
-      std::sort(times.begin(), times.end());
-      const auto median = times[times.size() / 2];
-      nlohmann::json row = {{"name", a.name},
-                            {"set", a.set},
-                            {"faces", surface.input.faces},
-                            {"repairs", surface.repairs},
-                            {"seconds_intake_wall", intake_wall},
-                            {"seconds_intake_cpu", intake_cpu},
-                            {"seconds_file_to_targets_cpu", intake_cpu + median.second},
-                            {"mcf_faces", stats.skeleton_faces},
-                            {"mcf_passes", stats.skeleton_passes},
-                            {"seconds_wall", median.first},
-                            {"seconds_cpu", median.second},
-                            {"seconds_prepare", stats.seconds_prepare},
-                            {"seconds_skeleton", stats.seconds_skeleton},
-                            {"seconds_graph", stats.seconds_graph},
-                            {"accuracy", nlohmann::json::parse(gw::accuracy_to_json(gw::compare_centerlines(graph, truth)))}};
-      if (vmtk_results.contains(a.name)) row["vmtk"] = vmtk_row(vmtk_results[a.name], truth);
-      row["peak_rss_mb_so_far"] = peak_rss_mb();
-      out["anatomies"].push_back(row);
+      out["anatomies"].push_back(anatomy_row(a, repeat, vmtk_results));
     }
     std::cout << out.dump() << "\n";
     return 0;

@@ -83,16 +83,103 @@ void refresh(const VesselScene& scene, const Eigen::Vector3d& p, double radius, 
   }
 }
 
-}  // namespace
-
-WallDistance cached_wall_distance(const WireModel& model, const VesselScene& scene, WireState& state, int point,
-                                  const Eigen::Vector3d& p, double need, bool exact_to_cutoff, double time) {
+// The cache entry of contact point `point`; the cache is (re)made first when the scene or the number of
+// points changed.
+WallCandidates& cache_entry(const WireModel& model, const VesselScene& scene, WireState& state, int point) {
   const int count = contact_point_count(model);
   if (state.wall_cache_scene != &scene || static_cast<int>(state.wall_cache.size()) != count) {
     state.wall_cache.assign(count, WallCandidates{});
     state.wall_cache_scene = &scene;
   }
-  WallCandidates& c = state.wall_cache[point];
+  return state.wall_cache[point];
+}
+
+// Keeps `bound` (exact, or a lower bound) as the signed wall distance at p and wall time t (the Lipschitz
+// test of the next query).
+inline void keep_bound(WallCandidates& c, const Eigen::Vector3d& p, double bound, double t) {
+  c.bound_point = p;
+  c.bound = bound;
+  c.bound_time = t;
+}
+
+// Rigid and cardiac walls: sets `out` to the distance at p (wall time t) from the list kept in the REST
+// frame and returns true; false (out untouched) when p has no usable pre-image (current_frame_distance then).
+bool rest_frame_distance(const WireModel& model, const VesselScene& scene, WallCandidates& c,
+                         const Eigen::Vector3d& p, double need, double cutoff, double t, WallDistance& out) {
+  // The list lives in the REST configuration, around the point's pre-image X
+  // (wall_rest_point_at: Newton from the last one), gathered from the rest grid with rest bounding
+  // spheres, as a static wall's. Exactness: a current triangle point within `need` of p has its rest
+  // point within rest_reach(need) of X (wall_motion.hpp: the map's smallest stretch sigma, curvature K
+  // and the inversion residual), hence within rest_reach(need) + |X - centre| of the list's centre; the
+  // list holds every triangle whose rest bounding sphere comes that near while that sum stays below
+  // `gathered`. The heart's beat does not move X (a wall point keeps its rest point); only the wire's
+  // motion relative to the wall does, so a list is re-gathered about as often as on a static wall.
+  RestPoint rp;
+  const bool warm = c.rest && c.gathered >= 0;
+  if (!wall_rest_point_at(scene, t, p, warm ? &c.rest_point : nullptr, rp)) return false;
+  const double reach = rest_reach(rp, need);
+  if (!std::isfinite(reach)) return false;
+  c.rest_point = rp.X;
+  double moved = warm ? (rp.X - c.centre).norm() : 0;
+  if (!warm || reach + moved > c.gathered) {
+    const double radius = rest_reach(rp, need + model.params.contact_slack_mm);
+    refresh(scene, rp.X, std::isfinite(radius) ? radius : reach, c, t, true);
+    moved = 0;
+  }
+  if (c.triangles.empty()) {
+    // No triangle's rest sphere within `gathered` of the centre: X is on the centre's side of the
+    // rest wall (inside or outside, kept by the map) and nothing comes within `need` of p.
+    if (c.clearance < 0) {  // outside: exact
+      out = wall_distance_at(scene, t, p);
+      return true;
+    }
+    WallDistance far;
+    far.signed_distance = std::max(need, current_reach(rp, c.gathered - moved));  // lower bound, >= need
+    keep_bound(c, p, far.signed_distance, t);
+    out = far;
+    return true;
+  }
+  WallDistance wd =
+      wall_distance_among_at(scene, t, p, c.triangles, cutoff, &c.lower_bounds, moved, &c.closest, &rp,
+                             &c.rest_spheres);
+  if (wd.triangle < 0) wd.signed_distance = cutoff;  // nothing within the cutoff: well inside
+  keep_bound(c, p, wd.signed_distance, t);
+  out = wd;
+  return true;
+}
+
+// Static walls, phase-sampled walls and the fallback of the rest frame: the distance at p (wall time t)
+// from the list on the wall's current shape, re-gathered when p moved (or the wall travelled) too far.
+WallDistance current_frame_distance(const WireModel& model, const VesselScene& scene, WallCandidates& c,
+                                    const Eigen::Vector3d& p, double need, double cutoff, double t) {
+  const WallMotion* motion = scene.motion.get();
+  double moved = c.gathered >= 0 ? (p - c.centre).norm() : 0;
+  if (motion && c.gathered >= 0) moved += wall_max_travel(*motion, c.wall_time, t);
+  if (c.gathered < 0 || c.rest || c.gathered - moved < need) {
+    refresh(scene, p, need + model.params.contact_slack_mm, c, t);
+    moved = 0;
+  }
+  if (c.triangles.empty()) {
+    if (c.clearance < 0)  // outside: exact
+      return motion ? wall_distance_at(scene, t, p) : wall_distance_by_grid(scene, p, need);
+    WallDistance far;
+    far.signed_distance = c.clearance - moved;  // lower bound, >= need
+    keep_bound(c, p, far.signed_distance, t);
+    return far;
+  }
+  WallDistance wd = motion ? wall_distance_among_at(scene, t, p, c.triangles, cutoff, &c.lower_bounds, moved, &c.closest)
+                           : wall_distance_among(scene, p, c.triangles, cutoff, &c.lower_bounds, moved, &c.closest,
+                                                 &c.face_bounds);
+  if (wd.triangle < 0) wd.signed_distance = cutoff;  // nothing within the cutoff: well inside
+  keep_bound(c, p, wd.signed_distance, t);  // exact, or (triangle < 0) a lower bound
+  return wd;
+}
+
+}  // namespace
+
+WallDistance cached_wall_distance(const WireModel& model, const VesselScene& scene, WireState& state, int point,
+                                  const Eigen::Vector3d& p, double need, bool exact_to_cutoff, double time) {
+  WallCandidates& c = cache_entry(model, scene, state, point);
   // Only distances below `cutoff` matter: contacts need `need`, the divergence check needs to see a
   // point that is more than the divergence margin outside. Farther triangles are not scanned.
   const double cutoff = std::max(need, model.params.divergence_margin_mm + model.radius_mm);
@@ -107,73 +194,11 @@ WallDistance cached_wall_distance(const WireModel& model, const VesselScene& sce
     far.signed_distance = deep;  // lower bound, > need
     return far;
   }
-  if (motion && motion->kind != WallMotionKind::phases) {
-    // Rigid and cardiac walls: the list lives in the REST configuration, around the point's pre-image X
-    // (wall_rest_point_at: Newton from the last one), gathered from the rest grid with rest bounding
-    // spheres, as a static wall's. Exactness: a current triangle point within `need` of p has its rest
-    // point within rest_reach(need) of X (wall_motion.hpp: the map's smallest stretch sigma, curvature K
-    // and the inversion residual), hence within rest_reach(need) + |X - centre| of the list's centre; the
-    // list holds every triangle whose rest bounding sphere comes that near while that sum stays below
-    // `gathered`. The heart's beat does not move X (a wall point keeps its rest point); only the wire's
-    // motion relative to the wall does, so a list is re-gathered about as often as on a static wall.
-    RestPoint rp;
-    const bool warm = c.rest && c.gathered >= 0;
-    if (wall_rest_point_at(scene, t, p, warm ? &c.rest_point : nullptr, rp)) {
-      const double reach = rest_reach(rp, need);
-      if (std::isfinite(reach)) {
-        c.rest_point = rp.X;
-        double moved = warm ? (rp.X - c.centre).norm() : 0;
-        if (!warm || reach + moved > c.gathered) {
-          const double radius = rest_reach(rp, need + model.params.contact_slack_mm);
-          refresh(scene, rp.X, std::isfinite(radius) ? radius : reach, c, t, true);
-          moved = 0;
-        }
-        if (c.triangles.empty()) {
-          // No triangle's rest sphere within `gathered` of the centre: X is on the centre's side of the
-          // rest wall (inside or outside, kept by the map) and nothing comes within `need` of p.
-          if (c.clearance < 0) return wall_distance_at(scene, t, p);  // outside: exact
-          WallDistance far;
-          far.signed_distance = std::max(need, current_reach(rp, c.gathered - moved));  // lower bound, >= need
-          c.bound_point = p;
-          c.bound = far.signed_distance;
-          c.bound_time = t;
-          return far;
-        }
-        WallDistance wd =
-            wall_distance_among_at(scene, t, p, c.triangles, cutoff, &c.lower_bounds, moved, &c.closest, &rp,
-                                   &c.rest_spheres);
-        if (wd.triangle < 0) wd.signed_distance = cutoff;  // nothing within the cutoff: well inside
-        c.bound_point = p;
-        c.bound = wd.signed_distance;
-        c.bound_time = t;
-        return wd;
-      }
-    }
-  }
-  double moved = c.gathered >= 0 ? (p - c.centre).norm() : 0;
-  if (motion && c.gathered >= 0) moved += wall_max_travel(*motion, c.wall_time, t);
-  if (c.gathered < 0 || c.rest || c.gathered - moved < need) {
-    refresh(scene, p, need + model.params.contact_slack_mm, c, t);
-    moved = 0;
-  }
-  if (c.triangles.empty()) {
-    if (c.clearance < 0)  // outside: exact
-      return motion ? wall_distance_at(scene, t, p) : wall_distance_by_grid(scene, p, need);
-    WallDistance far;
-    far.signed_distance = c.clearance - moved;  // lower bound, >= need
-    c.bound_point = p;
-    c.bound = far.signed_distance;
-    c.bound_time = t;
-    return far;
-  }
-  WallDistance wd = motion ? wall_distance_among_at(scene, t, p, c.triangles, cutoff, &c.lower_bounds, moved, &c.closest)
-                           : wall_distance_among(scene, p, c.triangles, cutoff, &c.lower_bounds, moved, &c.closest,
-                                                 &c.face_bounds);
-  if (wd.triangle < 0) wd.signed_distance = cutoff;  // nothing within the cutoff: well inside
-  c.bound_point = p;
-  c.bound = wd.signed_distance;  // exact, or (triangle < 0) a lower bound
-  c.bound_time = t;
-  return wd;
+  WallDistance from_rest;
+  if (motion && motion->kind != WallMotionKind::phases &&
+      rest_frame_distance(model, scene, c, p, need, cutoff, t, from_rest))
+    return from_rest;
+  return current_frame_distance(model, scene, c, p, need, cutoff, t);
 }
 
 bool same_wall_side(const Eigen::Vector3d& start_normal, const Eigen::Vector3d& mid_normal) {

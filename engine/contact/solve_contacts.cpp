@@ -168,14 +168,9 @@ void build_column(const std::vector<ContactPoint>& contacts, ContactWorkspace& w
   ws.column_built[ci] = 1;
 }
 
-}  // namespace
-
-ContactSolveResult solve_contact_impulses(const std::vector<ContactPoint>& contacts, double dt, double mu,
-                                          int iterations, bool warm_start, ContactWorkspace& ws) {
-  ContactSolveResult res;
-  const int m = static_cast<int>(contacts.size());
-  if (m == 0 || ws.nodes.empty()) return res;
-  const int dim = 3 * m;
+// Sizes the solve's scratch for m contacts (dim = 3 m rows; grown, never shrunk) and marks every column of
+// W as not built yet.
+void size_solve_workspace(ContactWorkspace& ws, int m, int dim) {
   if (ws.w.rows() < dim) {
     const int cap = std::max(dim, 2 * static_cast<int>(ws.w.rows()));
     ws.w.resize(cap, cap);
@@ -186,6 +181,11 @@ ContactSolveResult solve_contact_impulses(const std::vector<ContactPoint>& conta
   if (ws.basis.size() < static_cast<std::size_t>(m)) ws.basis.resize(m);
   if (ws.w_diag.size() < static_cast<std::size_t>(m)) ws.w_diag.resize(m);
   ws.column_built.assign(m, 0);
+}
+
+// Each contact's rows (n, t1, t2) into ws.basis and, with friction at the wire surface (ws.lever), its rows
+// on the node's (v, w) into ws.jac.
+void contact_rows(const std::vector<ContactPoint>& contacts, ContactWorkspace& ws, int m) {
   for (int ci = 0; ci < m; ++ci) {
     const ContactPoint& cc = contacts[ci];
     ws.basis[ci].row(0) = cc.n.transpose();
@@ -196,6 +196,11 @@ ContactSolveResult solve_contact_impulses(const std::vector<ContactPoint>& conta
     if (ws.jac.size() < static_cast<std::size_t>(m)) ws.jac.resize(m);
     for (int ci = 0; ci < m; ++ci) ws.jac[ci] = surface_rows(contacts[ci], ws.lever);
   }
+}
+
+// Per contact: its diagonal block of W into ws.w_diag and its free relative velocity with the gap's rate
+// (sub-step dt) into ws.bias.
+void diagonal_and_bias(const std::vector<ContactPoint>& contacts, double dt, ContactWorkspace& ws, int m) {
   for (int ci = 0; ci < m; ++ci) {
     const ContactPoint& cc = contacts[ci];
     ws.w_diag[ci] = compliance_block(contacts, ws, ci, ci);
@@ -207,11 +212,12 @@ ContactSolveResult solve_contact_impulses(const std::vector<ContactPoint>& conta
     ws.bias.segment<3>(3 * ci) << gap_rate + cc.n.dot(vc), cc.t1.dot(vc), cc.t2.dot(vc);
     if (ws.lever > 0) ws.bias.segment<3>(3 * ci) += ws.jac[ci].rightCols<3>() * cc.w_free;  // surface slip
   }
+}
 
-  // Projected Gauss-Seidel on u = W p + bias, kept up to date column by column: most contacts found by
-  // the swept margin never press (about 90% end a sub-step with zero impulse), their impulse never
-  // changes, and neither their column of W nor the update u += W_c dp_c is ever computed. A sweep costs
-  // O(m) plus O(m) per contact whose impulse moved, instead of O(m^2).
+// Starting impulses ws.impulse (the last solve's normal ones with `warm_start`, else zero; tangents zero)
+// and u = W p + bias for them in ws.u.
+void start_impulses(const std::vector<ContactPoint>& contacts, bool warm_start, ContactWorkspace& ws, int m,
+                    int dim) {
   auto p = ws.impulse.head(dim);
   auto u = ws.u.head(dim);
   u = ws.bias.head(dim);
@@ -223,6 +229,14 @@ ContactSolveResult solve_contact_impulses(const std::vector<ContactPoint>& conta
       u.noalias() += ws.w.block(0, 3 * ci, dim, 1) * p[3 * ci];
     }
   }
+}
+
+// Projected Gauss-Seidel sweeps (at most `iterations`, friction coefficient mu) on ws.impulse and ws.u;
+// the sweeps done and the last relative change into `res`.
+void gauss_seidel_sweeps(const std::vector<ContactPoint>& contacts, double mu, int iterations, ContactWorkspace& ws,
+                         int m, int dim, ContactSolveResult& res) {
+  auto p = ws.impulse.head(dim);
+  auto u = ws.u.head(dim);
   for (int it = 0; it < iterations; ++it) {
     double change = 0, largest = 1e-300;
     for (int ci = 0; ci < m; ++ci) {
@@ -251,6 +265,25 @@ ContactSolveResult solve_contact_impulses(const std::vector<ContactPoint>& conta
     res.residual = change / largest;
     if (res.residual < 1e-6) break;
   }
+}
+
+}  // namespace
+
+ContactSolveResult solve_contact_impulses(const std::vector<ContactPoint>& contacts, double dt, double mu,
+                                          int iterations, bool warm_start, ContactWorkspace& ws) {
+  ContactSolveResult res;
+  const int m = static_cast<int>(contacts.size());
+  if (m == 0 || ws.nodes.empty()) return res;
+  const int dim = 3 * m;
+  size_solve_workspace(ws, m, dim);
+  contact_rows(contacts, ws, m);
+  diagonal_and_bias(contacts, dt, ws, m);
+  // Projected Gauss-Seidel on u = W p + bias, kept up to date column by column: most contacts found by
+  // the swept margin never press (about 90% end a sub-step with zero impulse), their impulse never
+  // changes, and neither their column of W nor the update u += W_c dp_c is ever computed. A sweep costs
+  // O(m) plus O(m) per contact whose impulse moved, instead of O(m^2).
+  start_impulses(contacts, warm_start, ws, m, dim);
+  gauss_seidel_sweeps(contacts, mu, iterations, ws, m, dim, res);
   return res;
 }
 

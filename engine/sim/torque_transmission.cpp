@@ -65,23 +65,17 @@ double roll_between(const Eigen::Quaterniond& q0, const Eigen::Quaterniond& q1) 
   return std::atan2(y0.cross(y1).dot(t1), y0.dot(y1));
 }
 
-}  // namespace
-
-TorqueTransmission run_torque_transmission(const WireParams& params, double turn_seconds, int sample_every) {
-  TorqueTransmission out;
-  WireParams p = params;
-  p.tip_curvature_per_mm = 0;
-  const WireModel model = make_wire_model(p, 0.01);
-  std::vector<Eigen::Vector3d> points;
-  std::vector<Eigen::Quaterniond> turns;
-  tube_path(points, turns);
+// The tube's mesh: radius kTubeRadius, 16 sides, swept along the centreline `points`.
+TriangleMesh tube_mesh(const std::vector<Eigen::Vector3d>& points) {
   Eigen::MatrixX3d c(points.size(), 3);
   for (std::size_t i = 0; i < points.size(); ++i) c.row(i) = points[i].transpose();
-  out.tube = swept_tube_mesh(c, kTubeRadius, 16);
-  const VesselScene scene = make_vessel_scene(out.tube);
+  return swept_tube_mesh(c, kTubeRadius, 16);
+}
 
-  // Lay the wire along the centreline (arc a from the inlet on point a / ds), frames by parallel transport.
-  WireState s = make_initial_state(model, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), 0.0, kInserted);
+// Lays the free nodes of `s` along the centreline (points, turns from tube_path): arc a from the inlet on
+// point a / ds, frames by parallel transport.
+void lay_along_path(const WireModel& model, const std::vector<Eigen::Vector3d>& points,
+                    const std::vector<Eigen::Quaterniond>& turns, WireState& s) {
   const int k = first_free_node(model, s);
   std::vector<double> arc{0.0};
   for (std::size_t j = 1; j < points.size(); ++j) arc.push_back(arc.back() + (points[j] - points[j - 1]).norm());
@@ -93,15 +87,39 @@ TorqueTransmission run_torque_transmission(const WireParams& params, double turn
     s.x[i] = (1 - f) * points[j] + f * points[j + 1];
     s.q[i] = (turns[j].slerp(f, turns[j + 1]) * introducer_frame(s)).normalized();
   }
+}
+
+// Steps `s` still for 0.5 s to settle against the walls of `scene`; false (out.ok, out.problem set) when a
+// step fails.
+bool settle(const WireModel& model, const VesselScene& scene, WireState& s, TorqueTransmission& out) {
   const Control still{0, 0};
   for (int i = 0; i < 50; ++i) {  // 0.5 s to settle against the walls
     const StepReport rep = step(model, &scene, still, s);
     if (!rep.ok) {
       out.ok = false;
       out.problem = rep.problem;
-      return out;
+      return false;
     }
   }
+  return true;
+}
+
+// Adds one control step's report (sub-steps, contacts, sweeps, stage timings) to the sums in `out`.
+inline void add_step_report(const WireModel& model, const StepReport& rep, TorqueTransmission& out) {
+  out.substeps += model.substeps;
+  out.split_substeps += rep.split_substeps;
+  out.mean_contacts += rep.contacts;
+  out.mean_max_pgs_sweeps += rep.contact_iterations;
+  out.stages.detect_s += rep.timings.detect_s;
+  out.stages.assemble_s += rep.timings.assemble_s;
+  out.stages.solve_s += rep.timings.solve_s;
+  out.stages.constraints_s += rep.timings.constraints_s;
+}
+
+// Turns the proximal end of `s` one full turn in turn_seconds, back, then holds it 0.5 s: the series
+// (every sample_every steps), lags, tip rate and step sums into `out`. Returns the seconds spent in step().
+double turn_and_back(const WireModel& model, const VesselScene& scene, double turn_seconds, int sample_every,
+                     WireState& s, TorqueTransmission& out) {
   const Eigen::Quaterniond tip0 = s.q.back();
   double tip_roll = 0, last_roll = 0;
   const int per_turn = static_cast<int>(std::round(turn_seconds / model.dt));
@@ -119,14 +137,7 @@ TorqueTransmission run_torque_transmission(const WireParams& params, double turn
     clock = std::chrono::steady_clock::now();
     const StepReport rep = step(model, &scene, c, s);
     stepping += std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
-    out.substeps += model.substeps;
-    out.split_substeps += rep.split_substeps;
-    out.mean_contacts += rep.contacts;
-    out.mean_max_pgs_sweeps += rep.contact_iterations;
-    out.stages.detect_s += rep.timings.detect_s;
-    out.stages.assemble_s += rep.timings.assemble_s;
-    out.stages.solve_s += rep.timings.solve_s;
-    out.stages.constraints_s += rep.timings.constraints_s;
+    add_step_report(model, rep, out);
     if (!rep.ok) {
       out.ok = false;
       out.problem = rep.problem;
@@ -142,10 +153,35 @@ TorqueTransmission run_torque_transmission(const WireParams& params, double turn
     out.max_lag_rad = std::max(out.max_lag_rad, std::abs(s.proximal_rotation_rad - tip_roll));
     if (i + 1 == 2 * per_turn) out.final_lag_rad = std::abs(s.proximal_rotation_rad - tip_roll);
   }
+  return stepping;
+}
+
+// The run's speed (from `stepping`, the seconds spent in step()) and its per-control-step means.
+void finish_means(const WireModel& model, double stepping, TorqueTransmission& out) {
   out.substeps_per_s = stepping > 0 ? out.substeps / stepping : 0;
   const double control_steps = std::max(1.0, static_cast<double>(out.substeps) / model.substeps);
   out.mean_contacts /= control_steps;
   out.mean_max_pgs_sweeps /= control_steps;
+}
+
+}  // namespace
+
+TorqueTransmission run_torque_transmission(const WireParams& params, double turn_seconds, int sample_every) {
+  TorqueTransmission out;
+  WireParams p = params;
+  p.tip_curvature_per_mm = 0;
+  const WireModel model = make_wire_model(p, 0.01);
+  std::vector<Eigen::Vector3d> points;
+  std::vector<Eigen::Quaterniond> turns;
+  tube_path(points, turns);
+  out.tube = tube_mesh(points);
+  const VesselScene scene = make_vessel_scene(out.tube);
+  // Lay the wire along the centreline, let it settle, then turn its proximal end there and back.
+  WireState s = make_initial_state(model, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), 0.0, kInserted);
+  lay_along_path(model, points, turns, s);
+  if (!settle(model, scene, s, out)) return out;
+  const double stepping = turn_and_back(model, scene, turn_seconds, sample_every, s, out);
+  finish_means(model, stepping, out);
   return out;
 }
 

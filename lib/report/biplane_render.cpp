@@ -22,6 +22,7 @@ constexpr int kHeadlineScale = 3, kTitleScale = 2;
 constexpr int kLineGap = 5;
 constexpr int kPadSide = 16, kPadTop = 36, kPadBottom = 44;  // inside a panel: name on top, scale bar below
 constexpr int kMinPanelHeight = 120;
+constexpr int kLegendHeight = 30;            // the legend strip at the bottom
 constexpr Rgb kHalo = pal::kBackground;
 
 std::string format(const char* fmt, double v) {
@@ -355,19 +356,20 @@ void draw_legend(Image& img, int y0, const BiplaneOptions& options, double t_max
   }
 }
 
-}  // namespace
-
-BiplaneRender render_biplane(const TriangleMesh& mesh, const CenterlineGraph& graph,
-                             const std::vector<Eigen::Vector3d>& path_points, const Terminal& target,
-                             const std::vector<EpisodeTrace>& traces, const std::vector<std::string>& title_lines,
-                             const BiplaneOptions& options) {
+// Refuses (std::invalid_argument) an image size outside 320x240 .. 16384x16384 and an inconsistent trace.
+void check_biplane_input(const std::vector<EpisodeTrace>& traces, const BiplaneOptions& options) {
   const int W = options.width, H = options.height;
   if (W < 320 || H < 240 || W > 16384 || H > 16384)
     throw std::invalid_argument("biplane: image size " + std::to_string(W) + "x" + std::to_string(H) +
                                 " is outside 320x240 .. 16384x16384");
   for (std::size_t i = 0; i < traces.size(); ++i) check_trace(traces[i], "biplane: trace " + std::to_string(i));
+}
 
-  // The scene that frames both views (traces excluded: a diverged one would blow it up).
+// The scene that frames both views: mesh and wall outlines, path, inlet, targets, bifurcations and branches
+// (traces excluded: a diverged one would blow it up).
+std::vector<Eigen::Vector3d> framing_scene(const TriangleMesh& mesh, const CenterlineGraph& graph,
+                                           const std::vector<Eigen::Vector3d>& path_points, const Terminal& target,
+                                           const BiplaneOptions& options) {
   std::vector<Eigen::Vector3d> scene;
   scene.reserve(static_cast<std::size_t>(mesh.V.rows()) + path_points.size() + 16);
   for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) scene.push_back(mesh.V.row(v).transpose());
@@ -379,14 +381,16 @@ BiplaneRender render_biplane(const TriangleMesh& mesh, const CenterlineGraph& gr
   for (const auto& t : graph.targets) scene.push_back(t.position);
   for (const auto& b : graph.bifurcations) scene.push_back(b.position);
   for (const auto& b : graph.branches) scene.insert(scene.end(), b.points.begin(), b.points.end());
-  const std::array<ViewAxes, 2> axes = choose_biplane_axes(scene, graph.inlet.position, options.axes);
+  return scene;
+}
 
-  // Header: outcome line, generated summary, caller's lines (as many as leave a usable panel).
+// Header drawn into `img`: outcome line, generated summary, caller's lines (as many as leave a usable panel).
+// Returns the y below its last line; head_color: the outcome line's colour.
+int draw_header(Image& img, const std::vector<EpisodeTrace>& traces, const Terminal& target,
+                const std::vector<std::string>& title_lines, const BiplaneOptions& options, Rgb& head_color) {
+  const int W = options.width, H = options.height;
   // An outcome too long for one big line keeps its label big and wraps the detail below it.
-  BiplaneRender out{Image(W, H, pal::kBackground), {}};
-  Image& img = out.image;
   const int text_w = W - 2 * kOuter - 4;
-  Rgb head_color;
   std::string head = headline(traces, head_color);
   std::vector<std::pair<std::string, Rgb>> lines;
   if (text_width(head, kHeadlineScale) > text_w && traces.size() == 1) {
@@ -398,10 +402,9 @@ BiplaneRender render_biplane(const TriangleMesh& mesh, const CenterlineGraph& gr
   }
   lines.emplace_back(summary_line(traces, target), pal::kText);
   for (const auto& l : title_lines) lines.emplace_back(l, pal::kText);
-  const int legend_h = 30;
   const int line_h = kGlyphHeight * kTitleScale + kLineGap;
   const int head_h = kOuter + kGlyphHeight * kHeadlineScale + 2 * kLineGap;
-  const int max_lines = std::max(0, (H - legend_h - kMinPanelHeight - head_h - kOuter) / line_h);
+  const int max_lines = std::max(0, (H - kLegendHeight - kMinPanelHeight - head_h - kOuter) / line_h);
   if (static_cast<int>(lines.size()) > max_lines) lines.resize(static_cast<std::size_t>(max_lines));
   draw_text(img, kOuter + 2, kOuter, fit_text(head, text_w, kHeadlineScale), head_color, kHeadlineScale);
   int y = head_h;
@@ -409,11 +412,18 @@ BiplaneRender render_biplane(const TriangleMesh& mesh, const CenterlineGraph& gr
     draw_text(img, kOuter + 2, y, fit_text(l, text_w, kTitleScale), color, kTitleScale);
     y += line_h;
   }
-  const int panel_y = y + 2;
-  const int panel_h = H - legend_h - panel_y;
-  const int panel_w = (W - 3 * kOuter) / 2;
+  return y;
+}
 
-  // One scale for both views (a biplane reader compares lengths across panels).
+// One scale for both views (a biplane reader compares lengths across panels), and each view's centre (u, v).
+struct ViewFit {
+  double ppm;
+  std::array<Eigen::Vector2d, 2> centre;
+};
+
+// The largest scale at which the scene fits a panel_w x panel_h panel (inside its padding) in both views.
+ViewFit fit_views(const std::vector<Eigen::Vector3d>& scene, const std::array<ViewAxes, 2>& axes, int panel_w,
+                  int panel_h) {
   double ppm = std::numeric_limits<double>::infinity();
   std::array<Eigen::Vector2d, 2> centre;
   for (int v = 0; v < 2; ++v) {
@@ -430,21 +440,30 @@ BiplaneRender render_biplane(const TriangleMesh& mesh, const CenterlineGraph& gr
     if (ext.y() > 1e-9) ppm = std::min(ppm, (panel_h - kPadTop - kPadBottom) / ext.y());
   }
   if (!std::isfinite(ppm)) ppm = 10.0;  // a single point: any scale shows it
-  const double t_max = [&] {
-    double m = 0.0;
-    for (const auto& t : traces)
-      for (double s : t.time_s)
-        if (std::isfinite(s)) m = std::max(m, s);
-    return m > 0.0 ? m : 1.0;
-  }();
+  return {ppm, centre};
+}
 
-  const PanelInput in{mesh, graph, path_points, target, traces, options, t_max};
+// The traces' last finite time (1 s when none): the end of the time colouring.
+double trace_time_max(const std::vector<EpisodeTrace>& traces) {
+  double m = 0.0;
+  for (const auto& t : traces)
+    for (double s : t.time_s)
+      if (std::isfinite(s)) m = std::max(m, s);
+  return m > 0.0 ? m : 1.0;
+}
+
+// Both views drawn as panel_w x panel_h panels side by side from panel_y into out.image; out.views: where
+// each landed and its projection.
+void draw_views(BiplaneRender& out, const PanelInput& in, const std::array<ViewAxes, 2>& axes, const ViewFit& fit,
+                int panel_w, int panel_h, int panel_y) {
+  Image& img = out.image;
+  const double ppm = fit.ppm;
   for (int v = 0; v < 2; ++v) {
     ViewProjection local;
     local.axes = axes[v];
     local.px_per_mm = ppm;
     // Shift the scene a little down: the panel name takes more room on top than the bar below.
-    local.centre_uv = centre[v] + Eigen::Vector2d(0.0, (kPadTop - kPadBottom) / 2.0 / ppm);
+    local.centre_uv = fit.centre[v] + Eigen::Vector2d(0.0, (kPadTop - kPadBottom) / 2.0 / ppm);
     local.panel_size = {panel_w, panel_h};
     Image panel(panel_w, panel_h, pal::kBackground);
     draw_panel(panel, local, in);
@@ -455,8 +474,31 @@ BiplaneRender render_biplane(const TriangleMesh& mesh, const CenterlineGraph& gr
     out.views[static_cast<std::size_t>(v)] = local;
     out.views[static_cast<std::size_t>(v)].panel_origin = {x0, panel_y};
   }
-  draw_legend(img, H - legend_h + 4, options, t_max, traces.size() == 1 ? head_color : pal::outcome_color("success"),
-              traces.size() > 1);
+}
+
+}  // namespace
+
+BiplaneRender render_biplane(const TriangleMesh& mesh, const CenterlineGraph& graph,
+                             const std::vector<Eigen::Vector3d>& path_points, const Terminal& target,
+                             const std::vector<EpisodeTrace>& traces, const std::vector<std::string>& title_lines,
+                             const BiplaneOptions& options) {
+  const int W = options.width, H = options.height;
+  check_biplane_input(traces, options);
+  const std::vector<Eigen::Vector3d> scene = framing_scene(mesh, graph, path_points, target, options);
+  const std::array<ViewAxes, 2> axes = choose_biplane_axes(scene, graph.inlet.position, options.axes);
+
+  BiplaneRender out{Image(W, H, pal::kBackground), {}};
+  Rgb head_color;
+  const int panel_y = draw_header(out.image, traces, target, title_lines, options, head_color) + 2;
+  const int panel_h = H - kLegendHeight - panel_y;
+  const int panel_w = (W - 3 * kOuter) / 2;
+  const ViewFit fit = fit_views(scene, axes, panel_w, panel_h);
+  const double t_max = trace_time_max(traces);
+
+  const PanelInput in{mesh, graph, path_points, target, traces, options, t_max};
+  draw_views(out, in, axes, fit, panel_w, panel_h, panel_y);
+  draw_legend(out.image, H - kLegendHeight + 4, options, t_max,
+              traces.size() == 1 ? head_color : pal::outcome_color("success"), traces.size() > 1);
   return out;
 }
 

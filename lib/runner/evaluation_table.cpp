@@ -234,40 +234,168 @@ nlohmann::json resumable_rows(const nlohmann::json& previous, const EvaluationOp
   return rows;
 }
 
+namespace {
+
+// The row's episodes this run takes: all, or the --episodes shard of them ([first, end) of the row's draw).
+std::pair<int, int> shard_range(const EvaluationRow& row, const EvaluationOptions& o) {
+  const int all = scaled_episodes(row, o.episode_scale);
+  if (o.episode_count < 0) return std::pair<int, int>{0, all};
+  const int first = std::min(all, std::max(0, o.first_episode));
+  return std::pair<int, int>{first, std::min(all, first + o.episode_count)};
+}
+
+// How many episodes of the row this run takes (the shard's length).
+int row_episodes(const EvaluationRow& row, const EvaluationOptions& o) {
+  const auto [first, end] = shard_range(row, o);
+  return end - first;
+}
+
+// The actor JSON the row's SAC column runs ("" = none given: the column is skipped).
+std::string row_policy(const EvaluationRow& row, const EvaluationOptions& o) {
+  return row.base_policy ? o.base_policy : o.policy;
+}
+
+// How many columns the row runs: every controller, less SAC where the row has no policy.
+int row_columns(const EvaluationRow& row, const EvaluationOptions& o) {
+  return static_cast<int>(std::count_if(o.controllers.begin(), o.controllers.end(), [&](const std::string& kind) {
+    return kind != "policy" || !row_policy(row, o).empty();
+  }));
+}
+
+// The finished rows in the table's order, with the settings: what the caller may write after each row.
+nlohmann::json table_so_far(const std::vector<EvaluationRow>& rows, const std::map<std::string, nlohmann::json>& finished,
+                            const nlohmann::json& settings) {
+  nlohmann::json out_rows = nlohmann::json::array();
+  for (const EvaluationRow& row : rows)
+    if (auto it = finished.find(row.name); it != finished.end()) out_rows.push_back(it->second);
+  return nlohmann::json{{"rows", out_rows}, {"settings", settings}};
+}
+
+// The episodes the rows not yet finished will run (all their columns): the progress meter's total.
+int total_episodes(const std::vector<EvaluationRow>& rows, const std::map<std::string, nlohmann::json>& finished,
+                   const EvaluationOptions& o) {
+  int total = 0;
+  for (const EvaluationRow& row : rows)
+    if (!finished.count(row.name)) total += row_episodes(row, o) * row_columns(row, o);
+  return total;
+}
+
+// A row's record before it runs: name, anatomies, this run's episodes, the paper's figure, empty results and notes.
+nlohmann::json row_header(const EvaluationRow& row, int episodes) {
+  nlohmann::json r = {{"name", row.name}, {"anatomies", row.anatomies}, {"episodes", episodes},
+                      {"paper", row.paper_success}, {"paper_episodes", row.episodes},
+                      {"results", nlohmann::json::object()},
+                      {"notes", nlohmann::json::array()}};
+  if (row.heart_rate_bpm > 0) r["heart_rate_bpm"] = row.heart_rate_bpm;  // only then: older rows stay as they were
+  return r;
+}
+
+// What every column of a row shares: the wire and anatomies, the strict config and task (the draw and the
+// probes), this run's requests and the trace options.
+struct RowSetting {
+  const WireParams& wire;
+  const std::vector<Anatomy>& anatomies;
+  const TaskConfig& base_config;
+  const NavigationTask& default_task;
+  const std::vector<EpisodeRequest>& requests;
+  const TraceOptions& trace;
+};
+
+// One controller's column: the row's task adapted to its actor (recovery, force limit and reshape as the
+// options say), the requests run with progress under `label`. Returns summarize_episodes' JSON.
+nlohmann::json run_column(const std::string& kind, const std::string& policy, const RowSetting& s,
+                          const std::string& label, const EvaluationOptions& o, ProgressMeter& meter) {
+  auto make = [&] { return make_controller(kind, policy); };
+  TaskConfig config = s.base_config;
+  make()->adapt(config);  // an actor trained on the paper's omega (obs/1) is evaluated with it
+  config.recovery_attempts = o.task.recovery_attempts;  // the controllers' columns only: probes stay strict
+  config.recovery_assist = o.task.recovery_assist;
+  config.force_limit_N = o.task.force_limit_N;
+  std::optional<NavigationTask> adapted;
+  if (config.observation.omega_plane != s.default_task.config.observation.omega_plane ||
+      config.observation.junctions != s.default_task.config.observation.junctions ||
+      config.action != s.default_task.config.action || config.recovery_attempts > 0 || config.force_limit_N > 0)
+    adapted = make_navigation_task(config, s.wire, s.anatomies);
+  const NavigationTask& task = adapted ? *adapted : s.default_task;
+  std::optional<NavigationTask> reshaped;  // the controllers' columns only, as recovery
+  TraceOptions column_trace = s.trace;
+  if (o.reshape_tip_per_mm > 0) {
+    reshaped = make_reshaped_task(task, o.reshape_tip_per_mm, o.reshape_tip_length_mm);
+    column_trace.reshaped = &*reshaped;
+  }
+  const std::string where = label + ", " + kind + ": ";
+  auto progress = [&](int done, int of) { meter.episode_done(where + std::to_string(done) + "/" + std::to_string(of)); };
+  return summarize_episodes(run_batch(task, s.requests, make, o.threads, column_trace, progress));
+}
+
+// The row's columns into r["results"] (one per controller; a SAC column without its policy skipped with a
+// note), then its reachability, ceiling and planned figures. Throws what loading its anatomies throws.
+void run_row_columns(const EvaluationRow& row, const std::string& policy, const std::string& label,
+                     const WireParams& wire, const EvaluationOptions& o, ProgressMeter& meter, nlohmann::json& r) {
+  const std::vector<Anatomy> anatomies = load_row_anatomies(row, o);
+  TaskConfig base_config = o.task;  // strict: the draw and the probes
+  base_config.recovery_attempts = 0;
+  base_config.recovery_assist = false;
+  base_config.force_limit_N = 0.0;
+  const NavigationTask default_task = make_navigation_task(base_config, wire, anatomies);
+  const auto [first, end] = shard_range(row, o);
+  const std::vector<EpisodeRequest> all_requests = row_requests(default_task, end, o.seed);
+  const std::vector<EpisodeRequest> requests(all_requests.begin() + first, all_requests.end());
+  TraceOptions trace;
+  trace.wire_shape_every = 0;
+  trace.step_time_limit_s = o.step_time_limit_s;
+  const RowSetting setting{wire, anatomies, base_config, default_task, requests, trace};
+  for (const std::string& kind : o.controllers) {
+    if (kind == "policy" && policy.empty()) {
+      r["notes"].push_back("SAC column skipped: no policy trained on sensitivity/base only was given");
+      continue;
+    }
+    if (kind == "policy" && row.base_policy && policy == o.policy)
+      r["notes"].push_back("SAC column: the shipped policy (trained on the 4 training anatomies), not one "
+                           "trained on sensitivity/base only as in the paper");
+    const nlohmann::json summary = run_column(kind, policy, setting, label, o, meter);
+    const std::string column = kind == "policy" ? "sac-policy" : kind;
+    r["results"][column] = summary;
+  }
+  r["reachability"] = row_reachability(default_task, r["results"], o.reachability_seeds, o.threads);
+  if (o.reachability_seeds > 0) r["ceiling"] = row_ceiling(default_task, r["results"], o.threads);
+  if (o.planned_seeds > 0)  // the planner in its own task: act/2, control everywhere (plan/planning_task.hpp)
+    r["planned"] = row_planned(make_navigation_task(planning_task_config(base_config), wire, anatomies),
+                               o.planned_seeds, o.seed, o.plan, o.threads);
+}
+
+// One row run here: its record with its columns (or "skipped" with the reason) and its wall time; progress
+// to `meter`, from which the episodes a skipped row did not run are dropped.
+nlohmann::json run_row(const EvaluationRow& row, const std::string& label, const WireParams& wire,
+                       const EvaluationOptions& o, ProgressMeter& meter) {
+  const auto start = std::chrono::steady_clock::now();
+  const int episodes = row_episodes(row, o);
+  const int planned = episodes * row_columns(row, o), done_before = meter.done();
+  nlohmann::json r = row_header(row, episodes);
+  const std::string policy = row_policy(row, o);
+  try {
+    run_row_columns(row, policy, label, wire, o, meter, r);
+  } catch (const std::exception& e) {
+    r["skipped"] = e.what();
+  }
+  meter.drop(planned - (meter.done() - done_before));  // the episodes a skipped row did not run
+  r["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (o.progress)
+    meter.line(label + (r.contains("skipped") ? " skipped: " + r["skipped"].get<std::string>()
+                                              : " done in " + format_duration(r["wall_time_s"].get<double>())));
+  return r;
+}
+
+}  // namespace
+
 nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const EvaluationOptions& o) {
   // A bad wire file is the caller's error for every row alike: refused here, not skipped row by row.
   const WireParams wire = o.wire_path.empty() ? default_wire_params() : load_wire_params(o.wire_path);
   const nlohmann::json settings = evaluation_settings(o);
   std::map<std::string, nlohmann::json> finished;  // by name: kept from an earlier run, then the rows run here
   for (const nlohmann::json& row : o.finished_rows) finished[row["name"].get<std::string>()] = row;
-  // The row's episodes this run takes: all, or the --episodes shard of them.
-  auto shard_range = [&](const EvaluationRow& row) {
-    const int all = scaled_episodes(row, o.episode_scale);
-    if (o.episode_count < 0) return std::pair<int, int>{0, all};
-    const int first = std::min(all, std::max(0, o.first_episode));
-    return std::pair<int, int>{first, std::min(all, first + o.episode_count)};
-  };
-  auto row_episodes = [&](const EvaluationRow& row) {
-    const auto [first, end] = shard_range(row);
-    return end - first;
-  };
-  auto row_policy = [&](const EvaluationRow& row) { return row.base_policy ? o.base_policy : o.policy; };
-  auto row_columns = [&](const EvaluationRow& row) {
-    return static_cast<int>(std::count_if(o.controllers.begin(), o.controllers.end(), [&](const std::string& kind) {
-      return kind != "policy" || !row_policy(row).empty();
-    }));
-  };
-  // The finished rows in the table's order: what the caller may write after each row.
-  auto table_so_far = [&] {
-    nlohmann::json out_rows = nlohmann::json::array();
-    for (const EvaluationRow& row : rows)
-      if (auto it = finished.find(row.name); it != finished.end()) out_rows.push_back(it->second);
-    return nlohmann::json{{"rows", out_rows}, {"settings", settings}};
-  };
-  int total = 0;
-  for (const EvaluationRow& row : rows)
-    if (!finished.count(row.name)) total += row_episodes(row) * row_columns(row);
-  ProgressMeter meter(total, o.progress ? stderr : nullptr, o.progress && isatty(fileno(stderr)));
+  ProgressMeter meter(total_episodes(rows, finished, o), o.progress ? stderr : nullptr,
+                      o.progress && isatty(fileno(stderr)));
   const std::string of_rows = "/" + std::to_string(rows.size()) + " ";
   int index = 0;
   for (const EvaluationRow& row : rows) {
@@ -276,78 +404,10 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
       if (o.progress) meter.line(label + ": kept from the earlier run");
       continue;
     }
-    const auto start = std::chrono::steady_clock::now();
-    const int episodes = row_episodes(row);
-    const int planned = episodes * row_columns(row), done_before = meter.done();
-    nlohmann::json r = {{"name", row.name}, {"anatomies", row.anatomies}, {"episodes", episodes},
-                        {"paper", row.paper_success}, {"paper_episodes", row.episodes},
-                        {"results", nlohmann::json::object()},
-                        {"notes", nlohmann::json::array()}};
-    if (row.heart_rate_bpm > 0) r["heart_rate_bpm"] = row.heart_rate_bpm;  // only then: older rows stay as they were
-    const std::string policy = row_policy(row);
-    try {
-      const std::vector<Anatomy> anatomies = load_row_anatomies(row, o);
-      TaskConfig base_config = o.task;  // strict: the draw and the probes
-      base_config.recovery_attempts = 0;
-      base_config.recovery_assist = false;
-      base_config.force_limit_N = 0.0;
-      const NavigationTask default_task = make_navigation_task(base_config, wire, anatomies);
-      const auto [first, end] = shard_range(row);
-      const std::vector<EpisodeRequest> all_requests = row_requests(default_task, end, o.seed);
-      const std::vector<EpisodeRequest> requests(all_requests.begin() + first, all_requests.end());
-      TraceOptions trace;
-      trace.wire_shape_every = 0;
-      trace.step_time_limit_s = o.step_time_limit_s;
-      for (const std::string& kind : o.controllers) {
-        if (kind == "policy" && policy.empty()) {
-          r["notes"].push_back("SAC column skipped: no policy trained on sensitivity/base only was given");
-          continue;
-        }
-        if (kind == "policy" && row.base_policy && policy == o.policy)
-          r["notes"].push_back("SAC column: the shipped policy (trained on the 4 training anatomies), not one "
-                               "trained on sensitivity/base only as in the paper");
-        auto make = [&] { return make_controller(kind, policy); };
-        TaskConfig config = base_config;
-        make()->adapt(config);  // an actor trained on the paper's omega (obs/1) is evaluated with it
-        config.recovery_attempts = o.task.recovery_attempts;  // the controllers' columns only: probes stay strict
-        config.recovery_assist = o.task.recovery_assist;
-        config.force_limit_N = o.task.force_limit_N;
-        std::optional<NavigationTask> adapted;
-        if (config.observation.omega_plane != default_task.config.observation.omega_plane ||
-            config.observation.junctions != default_task.config.observation.junctions ||
-            config.action != default_task.config.action || config.recovery_attempts > 0 || config.force_limit_N > 0)
-          adapted = make_navigation_task(config, wire, anatomies);
-        const NavigationTask& task = adapted ? *adapted : default_task;
-        std::optional<NavigationTask> reshaped;  // the controllers' columns only, as recovery
-        TraceOptions column_trace = trace;
-        if (o.reshape_tip_per_mm > 0) {
-          reshaped = make_reshaped_task(task, o.reshape_tip_per_mm, o.reshape_tip_length_mm);
-          column_trace.reshaped = &*reshaped;
-        }
-        const std::string where = label + ", " + kind + ": ";
-        auto progress = [&](int done, int of) { meter.episode_done(where + std::to_string(done) + "/" + std::to_string(of)); };
-        const nlohmann::json summary =
-            summarize_episodes(run_batch(task, requests, make, o.threads, column_trace, progress));
-        const std::string column = kind == "policy" ? "sac-policy" : kind;
-        r["results"][column] = summary;
-      }
-      r["reachability"] = row_reachability(default_task, r["results"], o.reachability_seeds, o.threads);
-      if (o.reachability_seeds > 0) r["ceiling"] = row_ceiling(default_task, r["results"], o.threads);
-      if (o.planned_seeds > 0)  // the planner in its own task: act/2, control everywhere (plan/planning_task.hpp)
-        r["planned"] = row_planned(make_navigation_task(planning_task_config(base_config), wire, anatomies),
-                                   o.planned_seeds, o.seed, o.plan, o.threads);
-    } catch (const std::exception& e) {
-      r["skipped"] = e.what();
-    }
-    meter.drop(planned - (meter.done() - done_before));  // the episodes a skipped row did not run
-    r["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (o.progress)
-      meter.line(label + (r.contains("skipped") ? " skipped: " + r["skipped"].get<std::string>()
-                                                : " done in " + format_duration(r["wall_time_s"].get<double>())));
-    finished[row.name] = r;
-    if (o.on_row) o.on_row(table_so_far());
+    finished[row.name] = run_row(row, label, wire, o, meter);
+    if (o.on_row) o.on_row(table_so_far(rows, finished, settings));
   }
-  return table_so_far();
+  return table_so_far(rows, finished, settings);
 }
 
 nlohmann::json run_task_settings(const nlohmann::json& run) {

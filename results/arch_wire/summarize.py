@@ -132,17 +132,14 @@ def fifty_section():
     return out
 
 
-def main():
+def success_section(data):
+    """In: the runs, {(arch, controller): navigate JSON or None}. Out: the lines of the success table per arch x
+    target x controller (successes/episodes, rate, Wilson 95 %), each arch's all-targets row after its targets."""
     out = []
-    missing = []
     out.append("### Success per arch x target x controller (successes/episodes | rate | Wilson 95 %)\n")
     header = "| arch | target (path mm) | " + " | ".join(f"{c} k/n | rate | 95 % CI" for c in CONTROLLERS) + " |"
     out.append(header)
     out.append("|" + "---|" * (2 + 3 * len(CONTROLLERS)))
-    data = {(a, c): load(a, c) for a in ARCHES for c in CONTROLLERS}
-    for (a, c), d in data.items():
-        if d is None:
-            missing.append(f"{a}_{c}.json")
     for a in ARCHES:
         names = target_names(a)
         tables = {c: per_target(data[(a, c)]) if data[(a, c)] else None for c in CONTROLLERS}
@@ -160,7 +157,13 @@ def main():
             cells.append(cell({"success": d["successes"], "other": d["episodes"] - d["successes"]})
                          if d else "missing | | ")
         out.append(f"| {a} | **all 4** | " + " | ".join(cells) + " |")
+    return out
 
+
+def outcome_section(data):
+    """In: the runs, {(arch, controller): navigate JSON or None}. Out: the lines of the outcome-count table per arch x
+    controller x target (with the folded wrong branches and the median simulated time)."""
+    out = []
     out.append("\n### Outcome counts per arch x controller x target\n")
     out.append("| arch | controller | target | " + " | ".join(OUTCOMES) + " | wrong_branch folded | median sim s |")
     out.append("|" + "---|" * (3 + len(OUTCOMES) + 2))
@@ -179,8 +182,13 @@ def main():
                 med = times[len(times) // 2] if times else float("nan")
                 out.append(f"| {a} | {c} | {tid}: {names[tid][0]} | " + " | ".join(map(str, counts))
                            + f" | {folded} | {med:.1f} |")
+    return out
 
-    cmp_ = load("arch_type1", "policy", "_coronary014")
+
+def wire_section(data, cmp_):
+    """In: the runs and the coronary-wire run of arch_type1's policy (None: missing). Out: the lines of the wire
+    comparison table (0.035" angled against 0.014" coronary, per target)."""
+    out = []
     out.append("\n### Wire comparison, arch_type1, policy (same seeds 0..)\n")
     out.append("| wire | target | k/n | rate | 95 % CI | outcomes |")
     out.append("|---|---|---|---|---|---|")
@@ -193,9 +201,12 @@ def main():
         for tid, counts in sorted(per_target(d).items()):
             oc = ", ".join(f"{o} {counts[o]}" for o in OUTCOMES[1:] if counts[o])
             out.append(f"| {label} | {tid}: {names[tid][0]} | {cell(counts)} | {oc} |")
-    if cmp_ is None:
-        missing.append("arch_type1_policy_coronary014.json")
+    return out
 
+
+def wall_time_section(data, cmp_):
+    """In: the runs and the coronary-wire run (None: missing). Out: the lines listing each run's wall time."""
+    out = []
     out.append("\n### Wall time per run (navigate's wall_time_s, one thread)\n")
     for a in ARCHES:
         for c in CONTROLLERS:
@@ -205,13 +216,29 @@ def main():
                            f"({d['wall_time_s'] / d['episodes']:.2f} s/episode)")
     if cmp_:
         out.append(f"- arch_type1 policy, coronary wire: {cmp_['episodes']} episodes, {cmp_['wall_time_s']:.0f} s")
+    return out
+
+
+def main():
+    out = []
+    missing = []
+    data = {(a, c): load(a, c) for a in ARCHES for c in CONTROLLERS}
+    for (a, c), d in data.items():
+        if d is None:
+            missing.append(f"{a}_{c}.json")
+    out.extend(success_section(data))
+    out.extend(outcome_section(data))
+    cmp_ = load("arch_type1", "policy", "_coronary014")
+    out.extend(wire_section(data, cmp_))
+    if cmp_ is None:
+        missing.append("arch_type1_policy_coronary014.json")
+    out.extend(wall_time_section(data, cmp_))
     if missing:
         out.append("\nMissing runs: " + ", ".join(missing))
     out.extend(vessel_scale_section())
     out.extend(fifty_section())
     print("\n".join(out))
     return 0
-
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -37,9 +37,10 @@ def mean(xs):
     return sum(xs) / len(xs) if xs else float("nan")
 
 
-def main():
-    path = os.path.join(HERE, "results.json")
-    rows = [r["name"] for r in json.load(open(path))["rows"]] if os.path.exists(path) else []
+def strict_table(path, rows):
+    """In: this folder's results.json and its rows. Prints the table per row x controller: strict success, the
+    episodes whose strict outcome, steps and time match the reference run without recovery, success with recovery,
+    mean pull-backs, mean procedure time and peaks over 1.5 N."""
     print("| row | controller | strict | same strict outcome, steps and time as measured without recovery | with recovery (K = 3) | "
           "pull-backs (mean) | procedure time, s (mean) | peak node > 1.5 N (with recovery) |")
     print("|---|---|---|---|---|---|---|---|")
@@ -58,7 +59,11 @@ def main():
             print(f"| {row} | {label} | {rate(strict, n)} | {same} | "
                   f"{rate(sum(r['outcome'] == 'success' for r in rec), n)} | {mean([r['attempts'] for r in rec]):.2f} | "
                   f"{mean([r['procedure_time_s'] for r in rec]):.1f} | {over}/{n} |")
-    print()
+
+
+def comparison_table(path, rows):
+    """In: results.json and its rows. Prints, per row, the SAC policy against each scripted omega with recovery on
+    the same episodes: won, lost and the exact sign test's p."""
     print("| row | comparison (with recovery, same episodes) | won | lost | p (sign test) |")
     print("|---|---|---|---|---|")
     for row in rows:
@@ -72,7 +77,11 @@ def main():
             lost = sum(ok[b][k] and not ok[a][k] for k in keys)
             print(f"| {row} | {dict(COLUMNS)[a]} against {dict(COLUMNS)[b]} | {won} | {lost} | "
                   f"{sign_test(won, lost):.3f} |")
-    print()
+
+
+def compact_table(path, rows):
+    """In: results.json and its rows. Prints the compact table: per row and controller, strict success -> success
+    with recovery (mean pull-backs, mean procedure time)."""
     print("Each cell: strict success -> success with recovery (mean pull-backs, mean procedure time in simulated s).")
     print()
     print("| row | episodes | " + " | ".join(label for _, label in COLUMNS) + " |")
@@ -89,7 +98,11 @@ def main():
                          if run else "-")
         n = max((len(run_episodes(path, row, c)) for c, _ in COLUMNS), default=0)
         print(f"| {row} | {n} | " + " | ".join(cells) + " |")
-    print()
+
+
+def reached_table(path, rows):
+    """In: results.json and its rows. Prints, per row, how many of this run's episodes some procedure in any
+    results.json under results/ reaches, the ones none reaches, and how many files have the row."""
     print("Reached by any procedure run so far: every results.json under results/ with this row (any controller, with "
           "or without recovery, tip reshape, force limit, assist, any actor), over this run's episodes.")
     print()
@@ -107,6 +120,17 @@ def main():
         missed = ", ".join(f"{a} T{t} s{sd}" for a, t, sd in sorted(keys - reached)) or "none"
         print(f"| {row} | {rate(len(reached), len(keys))} | {missed} | {files} |")
 
+
+def main():
+    path = os.path.join(HERE, "results.json")
+    rows = [r["name"] for r in json.load(open(path))["rows"]] if os.path.exists(path) else []
+    strict_table(path, rows)
+    print()
+    comparison_table(path, rows)
+    print()
+    compact_table(path, rows)
+    print()
+    reached_table(path, rows)
 
 if __name__ == "__main__":
     main()

@@ -66,6 +66,13 @@ def test_cluster_table_equals_the_one_machine_table(evaluate, one_machine, tmp_p
     assert joined["rows"][0]["ceiling"]["reached_only_by_a_schedule"]  # the probes' join is exercised
     assert joined == one  # same episodes, outcomes, steps, forces, probes, settings
     assert (tmp_path / "results.md").read_text() == (one_machine / "results.md").read_text()
+    assert "(4 shards: 4 run, 0 kept from an earlier run)" in done.stderr
+    # Resumed with every shard in: nothing runs again, the summary says so, the table is the same.
+    again = subprocess.run(cluster_command(evaluate, tmp_path) + ["--resume"], capture_output=True, text=True,
+                           cwd=REPO, timeout=600)
+    assert again.returncode == 0, again.stderr
+    assert "(4 shards: 0 run, 4 kept from an earlier run)" in again.stderr
+    assert table(tmp_path) == one
 
 
 def descendants(pid: int) -> list[int]:

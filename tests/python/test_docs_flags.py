@@ -26,18 +26,14 @@ help does not list; each failure names the command and the flag.
 import re
 import subprocess
 import sys
-import tomllib
 from concurrent.futures import ThreadPoolExecutor
-from pathlib import Path
 
 import pytest
 
 import guidewire_nav
+from docs_commands import APPS, REPO, SCRIPTS, documented_commands
 
-REPO = Path(__file__).resolve().parents[2]
 DOC = REPO / "docs" / "commands.md"
-SCRIPTS = tomllib.loads((REPO / "training" / "pyproject.toml").read_text())["project"]["scripts"]
-APPS = re.findall(r"^gw_add_app\(([\w-]+)", (REPO / "apps" / "CMakeLists.txt").read_text(), re.M)
 
 # Commands whose --help takes the shared task flags (gw::add_task_options), documented under "Task options".
 TASK_OPTION_APPS = ("navigate", "evaluate", "guidewire-server")
@@ -235,51 +231,22 @@ def test_commands_md_documents_every_flag(helps):
     assert not problems, "docs/commands.md and --help disagree:\n" + "\n".join(problems)
 
 
-def documented_command_lines():
-    """(file, line, command, flags) for every command line in a fenced block of README.md, docs/*.md and the
-    folders' README.md files that runs an app or console script (`build/apps/NAME`, `.venv/bin/NAME` or the bare
-    name first; backslash continuations joined; comments and synopsis brackets dropped). Flags stop at a pipe,
-    a redirection or the next command (`&&`, `;`)."""
-    files = [REPO / "README.md", *sorted((REPO / "docs").glob("*.md")), *sorted(REPO.glob("*/README.md")),
-             *sorted(REPO.glob("*/*/README.md"))]
-    names = set(APPS) | set(SCRIPTS)
-    for path in files:
-        text = path.read_text()
-        for block in re.findall(r"^```[\w-]*\n(.*?)^```", text, re.S | re.M):
-            for raw in re.sub(r"\\\n\s*", " ", block).splitlines():
-                line = raw.split(" #")[0].strip()
-                for part in re.split(r"&&|;|\|\s", line):
-                    tokens = part.split()
-                    if not tokens:
-                        continue
-                    name = re.sub(r"^(?:\S*/)?(?:build/apps|\.venv/bin)/", "", tokens[0])
-                    if name not in names:
-                        continue
-                    command = name
-                    if name in SCRIPTS and len(tokens) > 1 and re.match(r"^[a-z]+$", tokens[1]):
-                        command = f"{name} {tokens[1]}"  # a sub-command (gw-cluster evaluate)
-                    flags = []
-                    for token in tokens[1:]:
-                        if token.startswith((">", "2>", "<")):
-                            break
-                        for found in re.findall(r"(?:^|[\[|(])(--[a-z][\w-]*)", token):
-                            flags.append(found)
-                    yield path.relative_to(REPO), raw.strip()[:80], command, flags
-
-
 def test_every_documented_command_line_uses_existing_flags(helps):
-    """A flag in a documented example or synopsis that the command's --help does not list fails (a renamed or
-    removed flag leaves no dead example behind). A sub-command that passes another command's flags on
-    (gw-cluster evaluate) may use that command's too."""
+    """A flag in a documented example or synopsis (docs_commands: the fenced blocks' and command tables'
+    commands of README.md, docs/*.md and the folders' README.md files) that the command's --help does not list
+    fails (a renamed or removed flag leaves no dead example behind). A sub-command that passes another command's
+    flags on (gw-cluster evaluate) may use that command's too. A command marked as a record of an earlier
+    commit (`<!-- docs-run: record: ... -->`) keeps that commit's flags and is not checked."""
     bad, seen = [], 0
-    for path, line, command, flags in documented_command_lines():
-        if command not in helps:
-            command = command.split()[0]
+    for doc in documented_commands():
+        if doc.command is None or doc.marked("record"):
+            continue
+        command = doc.command if doc.command in helps else doc.command.split()[0]
         known = option_flags(helps[command]) | {"--help"}
         for title, _ in help_groups(helps[command]):
             if (other := passed_on(title, APPS)) is not None:
                 known |= option_flags(helps[other])
         seen += 1
-        bad += [f"{path}: {line}: {command} has no {flag}" for flag in flags if flag not in known]
+        bad += [f"{doc.where}: {doc.text[:80]}: {command} has no {flag}" for flag in doc.flags() if flag not in known]
     assert seen > 50, f"only {seen} documented command lines found: the scan is broken"
     assert not bad, "documented commands with flags their --help does not list:\n" + "\n".join(bad)

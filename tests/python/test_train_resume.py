@@ -78,3 +78,12 @@ def test_resume_continues_the_run_from_its_checkpoint(tmp_path):
     model.load_replay_buffer(out / "final_replay_buffer.pkl")
     assert model.num_timesteps == 180
     assert model.replay_buffer.size() == 180  # the 120 transitions it had, and the 60 after
+
+
+def test_resume_counts_the_transitions_of_every_env(tmp_path, capsys):
+    # Two envs fill one buffer row per vector step with two transitions: 120 steps are 120 transitions, not 60.
+    out = tmp_path / "run2"
+    assert _train(out, "--total-steps", "120", "--envs", "2") == 0
+    capsys.readouterr()
+    assert _train(out, "--total-steps", "160", "--envs", "2", "--resume") == 0
+    assert "at step 120 (120 transitions in the replay buffer)" in capsys.readouterr().err

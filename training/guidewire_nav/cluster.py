@@ -228,7 +228,8 @@ def write_table(args, rows, settings):
 
 
 def evaluate_on_ray(args):
-    """Runs the table as shards on Ray; returns {episodes, shards, wall_s, retried}."""
+    """Runs the table as shards on Ray; returns {episodes, shards, shards_run (the others were kept from an earlier
+    run), wall_s, markdown}."""
     started = time.monotonic()
     planned = plan_rows(args)
     shards = shards_of(planned, max(1, args.shard_episodes))
@@ -276,7 +277,8 @@ def evaluate_on_ray(args):
         ray.shutdown()
     md = write_table(args, [rows[n] for n, _, _ in planned], settings)
     episodes = sum(col["episodes"] for r in rows.values() for col in r.get("results", {}).values())
-    return {"episodes": episodes, "shards": len(shards), "wall_s": time.monotonic() - started, "markdown": md}
+    return {"episodes": episodes, "shards": len(shards), "shards_run": len(todo), "wall_s": time.monotonic() - started,
+            "markdown": md}
 
 
 def bench(args):
@@ -336,8 +338,9 @@ def main(argv=None):
         return bench(args)
     result = evaluate_on_ray(args)
     print(result["markdown"], end="")
-    print(f"[cluster] {result['episodes']} episodes in {result['wall_s']:.0f} s "
-          f"({result['shards']} shards)", file=sys.stderr)
+    kept = result["shards"] - result["shards_run"]
+    print(f"[cluster] {result['episodes']} episodes in {result['wall_s']:.0f} s ({result['shards']} shards: "
+          f"{result['shards_run']} run, {kept} kept from an earlier run)", file=sys.stderr)
     return 0
 
 

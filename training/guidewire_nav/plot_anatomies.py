@@ -16,6 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
+from guidewire_nav import REPO_ROOT
+
 
 def read_binary_stl(path: Path) -> np.ndarray:
     """Triangles as an (n, 3, 3) float array (mm)."""
@@ -57,7 +59,7 @@ def draw(ax, root: Path, entry: dict, max_faces: int = 12000) -> None:
 
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--index", default="anatomies/index.json", help="anatomy index to draw")
+    parser.add_argument("--index", help="anatomy index to draw (default: the repository's anatomies/index.json)")
     parser.add_argument("--out", default="runs/anatomies.png",
                         help="output PNG (default runs/anatomies.png; the committed picture is anatomies/anatomies.png)")
     args = parser.parse_args(argv)
@@ -67,7 +69,7 @@ def main(argv: list[str] | None = None) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    index = Path(args.index)
+    index = Path(args.index) if args.index else REPO_ROOT / "anatomies" / "index.json"
     if not index.is_file():
         parser.error(f"--index: {index}: no such anatomy index (give anatomies/index.json or a set's manifest)")
     root = index.resolve().parent.parent  # paths in the index are relative to the repository root

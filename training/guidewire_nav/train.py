@@ -444,30 +444,26 @@ def check_resumable(s: Settings, out: Path) -> tuple[int, Path, Path]:
     return latest
 
 
-def main(argv=None) -> int:
-    s = parse_settings(argv)
-    out = Path(s.out)
-    out.mkdir(parents=True, exist_ok=True)
-    commit = git_commit()
-    command = "python -m guidewire_nav.train " + " ".join(sys.argv[1:] if argv is None else argv)
-    resume_from = check_resumable(s, out) if s.resume else None  # (step, model zip, replay buffer)
-    resumed_at = resume_from[0] if resume_from else 0
+def record_settings(s: Settings, out: Path, commit: str, command: str, resume_from, resumed_at: int) -> dict:
+    """Settings phase. In: the settings, commit, command line and --resume's checkpoint (None: a new run). Writes
+    out/settings.json: these settings, commit and command (a resumed run: the run's own settings, this resumption
+    appended to their "resumed" list). Out: that record (the environments add the task to it)."""
     record = {**dataclasses.asdict(s), "commit": commit, "command": command}
     if resume_from:  # the run's settings stay; each resumption is recorded beside them
         saved = json.loads((out / "settings.json").read_text())
         saved.setdefault("resumed", []).append({"at_step": resumed_at, "from": str(resume_from[1]), **record})
         record = saved
     (out / "settings.json").write_text(json.dumps(record, indent=2))
+    return record
 
-    if s.torch_threads > 0:
-        torch.set_num_threads(s.torch_threads)
-    # --- seeding: same seed, same run (up to nondeterministic GPU kernels)
-    np.random.seed(s.seed)
-    torch.manual_seed(s.seed)
 
-    # --- environments: one server per worker, episodes on a random training anatomy and target; with
-    # --ray the servers are Ray actors (ray_servers.py), the evaluation's reserving no CPU (idle while
-    # the workers run)
+def make_environments(s: Settings, out: Path, record: dict, resume_from, resumed_at: int):
+    """Environments phase. In: the settings, the run's record, --resume's checkpoint and its step. Starts one server
+    per worker and one for evaluation (Ray actors with --ray), the workers' monitor CSV (a resumed part: its own
+    monitor_from_<step>), and writes the servers' whole task into settings.json. Out: (vec_env, eval_env, the Ray
+    actor handles: keep them until the run ends)."""
+    # one server per worker, episodes on a random training anatomy and target; with --ray the servers are Ray
+    # actors (ray_servers.py), the evaluation's reserving no CPU (idle while the workers run)
     ray_servers, ray_actors = {}, {}
     if s.ray:
         from guidewire_nav.ray_servers import start_servers
@@ -483,8 +479,14 @@ def main(argv=None) -> int:
     # the whole task the servers run (their spec: every TaskConfig field), beside the --task that chose it
     record.setdefault("task_settings", eval_env.unwrapped.spec_reply["task"])
     (out / "settings.json").write_text(json.dumps(record, indent=2))
+    return vec_env, eval_env, ray_actors
 
-    # --- SAC with the paper's settings; the actor may get its own learning rate (SACWithActorRate)
+
+def make_model(s: Settings, out: Path, vec_env, eval_env, resume_from) -> SACWithActorRate:
+    """Model phase. In: the settings, the environments and --resume's checkpoint. Out: the SAC model with the
+    paper's settings: the run's own state (--resume), --init-model's networks or fresh ones, the actor from
+    --init-actor if given; it logs to out/logs."""
+    # the actor may get its own learning rate (SACWithActorRate)
     sac_settings = dict(
         learning_rate=s.learning_rate, buffer_size=s.buffer_size, batch_size=s.batch_size, gamma=s.gamma,
         learning_starts=s.learning_starts, train_freq=s.train_freq, gradient_steps=s.gradient_steps,
@@ -493,7 +495,9 @@ def main(argv=None) -> int:
     if resume_from:  # the run's own state: networks, optimisers, entropy coefficient, step counter, buffer
         model = SACWithActorRate.load(resume_from[1], env=vec_env, **sac_settings)
         model.load_replay_buffer(resume_from[2])
-        print(f"[train] resumed {out} at step {model.num_timesteps} ({model.replay_buffer.size()} transitions "
+        # SB3 keeps one buffer row per vector step, n_envs transitions in each
+        transitions = model.replay_buffer.size() * model.replay_buffer.n_envs
+        print(f"[train] resumed {out} at step {model.num_timesteps} ({transitions} transitions "
               f"in the replay buffer)", file=sys.stderr)
     elif s.init_model:  # fine-tuning: the saved networks (and learned entropy coefficient), a fresh buffer
         model = SACWithActorRate.load(s.init_model, env=vec_env, **sac_settings)
@@ -510,7 +514,15 @@ def main(argv=None) -> int:
             start_actor = widen_to_push_pull(start_actor)
         load_actor_json(model, start_actor, log_std=s.init_log_std)
     model.set_logger(configure(str(out / "logs"), ["csv", "tensorboard"]))
+    return model
 
+
+def learn(s: Settings, out: Path, model, eval_env, resume_from) -> tuple[list[dict], float]:
+    """Learning-loop phase. In: the settings, the model, the evaluation environment and --resume's checkpoint.
+    Learns up to --total-steps with the callbacks (actor freeze and anchor, periodic evaluation keeping
+    out/best_model.zip, checkpoints), saves out/final_model.zip and final_replay_buffer.pkl, evaluates the final
+    model if the last evaluation was not at its step. Out: (the evaluations, a resumed run's earlier ones first;
+    the wall time in s)."""
     # --- callbacks: actor freeze and anchor (fine-tuning), periodic evaluation keeping the best actor,
     # checkpoints
     reference = copy.deepcopy(model.actor).requires_grad_(False) if s.anchor_weight > 0 else None
@@ -534,8 +546,14 @@ def main(argv=None) -> int:
     if s.eval_episodes > 0 and (not evals or evals[-1]["step"] != model.num_timesteps):
         eval_cb.run_eval()
     wall = time.time() - start
+    return evals, wall
 
-    # --- export the best actor (deterministic tanh(mu)) for the C++ runtime
+
+def export_run(s: Settings, out: Path, model, eval_env, evals: list[dict], record: dict, command: str, commit: str,
+               wall: float) -> dict:
+    """Saving phase. In: the settings, the learned model, the evaluations, the run's record, command, commit and
+    wall time. Writes out/actor.json (the best actor, deterministic tanh(mu), for the C++ runtime; the final model
+    when no evaluation kept one) and out/summary.json. Out: the summary."""
     from guidewire_nav.export_actor import export_sac_actor
 
     best = SAC.load(out / "best_model.zip", device="cpu") if (out / "best_model.zip").exists() else model
@@ -554,10 +572,12 @@ def main(argv=None) -> int:
     export_sac_actor(best, out / "actor.json", obs_layout=obs_layout, training_settings=summary,
                      action_layout=action_layout)
     (out / "summary.json").write_text(json.dumps(summary, indent=2))
+    return summary
 
-    # --- training curve
-    plot_curve(out / "training_curve.png", read_run_monitors(out), evals, anatomies=s.anatomies)
 
+def close_environments(vec_env, eval_env, ray_actors: dict) -> None:
+    """In: the environments and the Ray actor handles. Closes the environments; with --ray drops the handles
+    (their servers end) and shuts Ray down."""
     vec_env.close()
     eval_env.close()
     if ray_actors:
@@ -565,6 +585,39 @@ def main(argv=None) -> int:
 
         ray_actors.clear()
         ray.shutdown()
+
+
+def main(argv=None) -> int:
+    # --- settings: the run's folder and settings.json; --resume: the checkpoint it continues from
+    s = parse_settings(argv)
+    out = Path(s.out)
+    out.mkdir(parents=True, exist_ok=True)
+    commit = git_commit()
+    command = "python -m guidewire_nav.train " + " ".join(sys.argv[1:] if argv is None else argv)
+    resume_from = check_resumable(s, out) if s.resume else None  # (step, model zip, replay buffer)
+    resumed_at = resume_from[0] if resume_from else 0
+    record = record_settings(s, out, commit, command, resume_from, resumed_at)
+
+    if s.torch_threads > 0:
+        torch.set_num_threads(s.torch_threads)
+    # --- seeding: same seed, same run (up to nondeterministic GPU kernels)
+    np.random.seed(s.seed)
+    torch.manual_seed(s.seed)
+
+    # --- environments: one server per worker (Ray actors with --ray) and one for evaluation
+    vec_env, eval_env, ray_actors = make_environments(s, out, record, resume_from, resumed_at)
+
+    # --- SAC with the paper's settings (or the run's latest checkpoint with --resume)
+    model = make_model(s, out, vec_env, eval_env, resume_from)
+
+    # --- learn, with periodic evaluation and checkpoints
+    evals, wall = learn(s, out, model, eval_env, resume_from)
+
+    # --- saving: the best actor for the C++ runtime, the summary, the training curve
+    summary = export_run(s, out, model, eval_env, evals, record, command, commit, wall)
+    plot_curve(out / "training_curve.png", read_run_monitors(out), evals, anatomies=s.anatomies)
+
+    close_environments(vec_env, eval_env, ray_actors)
     print(json.dumps({k: summary[k] for k in ("steps", "wall_time_s", "best_success_rate")}))
     return 0
 

@@ -256,6 +256,18 @@ class SACWithActorRate(SAC):
     def _excluded_save_params(self) -> list[str]:
         return [*super()._excluded_save_params(), "actor_learning_rate"]  # the zips stay plain SAC's
 
+    def collect_rollouts(self, *args, **kwargs):
+        """SB3's collection with torch on one thread: the actor's forward pass on a few observations gains
+        nothing from more, and a second OpenMP thread spinning after it takes a core from the servers
+        (gw-bench-train, 2 cores, 2 servers: 125 -> 170 env steps/s of collection). Gradient steps keep
+        every thread."""
+        threads = torch.get_num_threads()
+        torch.set_num_threads(1)
+        try:
+            return super().collect_rollouts(*args, **kwargs)
+        finally:
+            torch.set_num_threads(threads)
+
     def _update_learning_rate(self, optimizers) -> None:
         super()._update_learning_rate(optimizers)
         if getattr(self, "actor_learning_rate", 0.0) > 0:

@@ -22,6 +22,7 @@
 #include "lib/runner/row_planned.hpp"
 #include "lib/runner/success_statistics.hpp"
 #include "plan/planning_task.hpp"
+#include "policy/load_actor.hpp"
 #include "task/navigation_task.hpp"
 #include "task/task_config_json.hpp"
 #include "engine/wire/wire_params.hpp"
@@ -391,6 +392,16 @@ nlohmann::json run_row(const EvaluationRow& row, const std::string& label, const
 nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const EvaluationOptions& o) {
   // A bad wire file is the caller's error for every row alike: refused here, not skipped row by row.
   const WireParams wire = o.wire_path.empty() ? default_wire_params() : load_wire_params(o.wire_path);
+  // So is a missing or broken actor file of the SAC column (it was a "skipped" row each, and exit 0).
+  if (std::find(o.controllers.begin(), o.controllers.end(), "policy") != o.controllers.end()) {
+    if (o.policy.empty()) throw std::invalid_argument("--policy: the SAC column needs an actor JSON file");
+    try {
+      load_actor(o.policy);
+    } catch (const std::exception& e) {
+      throw std::invalid_argument(std::string("--policy: ") + e.what() +
+                                  " (an actor JSON as gw-export writes; without a SAC column: --controllers)");
+    }
+  }
   const nlohmann::json settings = evaluation_settings(o);
   std::map<std::string, nlohmann::json> finished;  // by name: kept from an earlier run, then the rows run here
   for (const nlohmann::json& row : o.finished_rows) finished[row["name"].get<std::string>()] = row;

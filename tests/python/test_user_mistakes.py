@@ -67,10 +67,16 @@ def test_the_other_apps(tmp_path):
     assert "--inlet" in error_line(run([app("centerline"), "--anatomy", T1, "--inlet", "nan,0,0"]))
     assert "--rows" in error_line(run([app("evaluate"), "--rows", "no-such-row", "--plan"]))
     assert "--from-json" in error_line(run([app("evaluate"), "--from-json", "/nonexistent/results.json"]))
+    # a missing or broken actor is refused before any row runs (was: every row "skipped", exit 0)
+    (tmp_path / "actor.json").write_text("[1, 2, 3]")
+    for actor in ("/nonexistent/actor.json", str(tmp_path / "actor.json")):
+        line = error_line(run([app("evaluate"), "--policy", actor, "--rows", "coronary-like", "--episode-scale", "0.01",
+                               "--out", str(tmp_path / "eval")]))
+        assert "--policy" in line and actor in line, line
+        assert not (tmp_path / "eval" / "results.json").exists()
     # bench-mechanics takes STEM or STEM.stl; a mesh without a generated truth says what it needs
     line = error_line(run([app("bench-mechanics"), "--anatomy", str(REPO / "README.md")]))
     assert "truth.json" in line and "STEM" in line
-    (tmp_path / "actor.json").write_text("[1, 2, 3]")
     assert "actor.json" in error_line(run([app("policy-run"), "--policy", str(tmp_path / "actor.json")], "0\n"))
 
 

@@ -393,8 +393,8 @@ nlohmann::json run_evaluation(const std::vector<EvaluationRow>& rows, const Eval
   // A bad wire file is the caller's error for every row alike: refused here, not skipped row by row.
   const WireParams wire = o.wire_path.empty() ? default_wire_params() : load_wire_params(o.wire_path);
   // So is a missing or broken actor file of the SAC column (it was a "skipped" row each, and exit 0).
-  if (std::find(o.controllers.begin(), o.controllers.end(), "policy") != o.controllers.end()) {
-    if (o.policy.empty()) throw std::invalid_argument("--policy: the SAC column needs an actor JSON file");
+  // ("" = no actor given: the SAC column is skipped, as row_policy says.)
+  if (!o.policy.empty() && std::find(o.controllers.begin(), o.controllers.end(), "policy") != o.controllers.end()) {
     try {
       load_actor(o.policy);
     } catch (const std::exception& e) {

@@ -348,7 +348,7 @@ build/apps/navigate --anatomy {T1} --target 1 --episodes 30 --out runs/n
 
 def test_the_runner_on_a_sample_doc(tmp_path):
     """A block's commands run in order in its folder (the replay reads the plan the line above wrote; the
-    redirection writes there); evaluate's skipped row fails; placeholders and markers skip; short forms apply."""
+    redirection writes there); a failing command is reported; placeholders and markers skip; short forms apply."""
     for name in ("plan", "navigate", "evaluate"):
         app_or_skip(name)
     docs = commands_in(Path("sample.md"), SAMPLE)
@@ -356,7 +356,8 @@ def test_the_runner_on_a_sample_doc(tmp_path):
     assert [r[1] for r in first] == [None, None, None, "placeholder: FILE"]
     assert first[0][2] is None and first[1][2] is None, first
     assert json.loads((tmp_path / "a/runs/replay.json").read_text())
-    assert "silent failure" in first[2][2] and "runs/none/actor.json" in first[2][2]
+    # a missing actor: evaluate refuses it up front (exit 1, naming it); before, a silent "skipped" row
+    assert "exit 1" in first[2][2] and "runs/none/actor.json" in first[2][2]
     second = run_unit([d for d in docs if d.unit != docs[0].unit], tmp_path / "b")
     assert [r[1] for r in second] == ["marked: a reason", None] and second[1][2] is None
     shell, _ = shell_command(docs[-1], tmp_path / "b")

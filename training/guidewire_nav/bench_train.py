@@ -88,9 +88,10 @@ def bench_vec_env(vec_env, steps: int) -> dict:
 
 
 def make_model(vec_env, config: dict, seed: int = 0) -> SACWithActorRate:
-    """SAC with gw-train's paper settings and the config's schedule, batch and net."""
-    return SACWithActorRate("MlpPolicy", vec_env, learning_rate=1e-4, buffer_size=10_000, batch_size=config["batch_size"],
-                            gamma=0.98, learning_starts=0, train_freq=config["train_freq"],
+    """SAC with gw-train's paper settings (its Settings defaults) and the config's schedule, batch and net."""
+    paper = Settings()
+    return SACWithActorRate("MlpPolicy", vec_env, learning_rate=paper.learning_rate, buffer_size=paper.buffer_size,
+                            batch_size=config["batch_size"], gamma=paper.gamma, learning_starts=0, train_freq=config["train_freq"],
                             gradient_steps=config["gradient_steps"], seed=seed, device="cpu", verbose=0,
                             policy_kwargs={"net_arch": config["net_arch"]})
 

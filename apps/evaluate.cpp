@@ -6,6 +6,7 @@
 //   evaluate --out results/ --resume   # after an interruption: the rows results.json holds are kept
 //   evaluate --rows coronary-like --episodes 10:10 --out s2   # a shard: episodes 10-19 of the row
 // Progress with an ETA goes to stderr; results.json and results.md are rewritten after every row.
+#include <algorithm>
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <fstream>
@@ -45,10 +46,20 @@ void write_markdown(const nlohmann::json& result, const std::string& out_dir, bo
 }
 
 // The rows to run: those --rows selects and, resuming, those the earlier run finished (kept, not run
-// again), in the table's order, so the table grows to the union. A kept row the table no longer has is
-// dropped with a warning.
+// again), in the table's order, so the table grows to the union; pool rows (an anatomy index, gw::index_row)
+// come after the table's. A kept row the table no longer has is dropped with a warning.
 std::vector<gw::EvaluationRow> rows_to_run(const std::string& rows_filter, const nlohmann::json& kept) {
-  const std::vector<gw::EvaluationRow> table = gw::paper_table(), selected = gw::select_rows(table, rows_filter);
+  std::vector<gw::EvaluationRow> table = gw::paper_table();
+  const std::vector<gw::EvaluationRow> selected = gw::select_rows(table, rows_filter);
+  auto in_table = [&](const std::string& name) {
+    return std::any_of(table.begin(), table.end(), [&](const gw::EvaluationRow& r) { return r.name == name; });
+  };
+  for (const gw::EvaluationRow& s : selected)
+    if (!in_table(s.name)) table.push_back(s);
+  for (const nlohmann::json& k : kept) {
+    const std::string name = k["name"].get<std::string>();
+    if (!in_table(name) && name.rfind("pool ", 0) == 0) table.push_back(gw::index_row(name.substr(5)));
+  }
   std::vector<gw::EvaluationRow> out;
   for (const gw::EvaluationRow& row : table) {
     bool use = false;
@@ -95,7 +106,8 @@ void add_evaluate_options(CLI::App& app, EvaluateArgs& a) {
   gw::add_task_options(app, a.task);
   gw::add_procedure_options(app, a.procedure);
   app.add_option("--threads", a.o.threads, "episodes run in parallel");
-  app.add_option("--rows", a.rows_filter, "only rows whose name contains one of these comma-separated texts (coronary,var1)");
+  app.add_option("--rows", a.rows_filter, "only rows whose name contains one of these comma-separated texts (coronary,var1); "
+                 "an anatomy index (POOL/index.json) is a row of its own: every anatomy it lists, 5 episodes each");
   app.add_option("--out", a.out_dir, "folder for results.md and results.json (both rewritten after every row, so an "
                  "interruption loses no finished row)");
   app.add_flag("--resume", a.resume,

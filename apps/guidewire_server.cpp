@@ -26,7 +26,8 @@ int main(int argc, char** argv) {
   app.add_option("--port", options.port, "TCP port; 0 picks a free one (printed as the first stdout line)")->required();
   app.add_option("--host", options.host, "address to listen on")->capture_default_str();
   app.add_option("--anatomies", anatomies,
-                 "comma-separated anatomy sets (train, test, sensitivity), names from the index, or mesh paths")
+                 "comma-separated anatomy sets (train, test, sensitivity), names from the index, mesh paths, or "
+                 "another index's path (a gw-anatomy-pool pool's index.json: every anatomy in it)")
       ->capture_default_str();
   app.add_option("--index", index, "anatomy index JSON")->capture_default_str();
   app.add_option("--wire", wire_json, "wire parameter JSON (default: 0.014\" coronary wire)");

@@ -86,6 +86,11 @@ std::vector<AnatomySource> resolve_anatomy_sources(const std::string& spec, cons
       out.push_back({stem, mesh.string(), truth.string()});
       continue;
     }
+    if (ends_with(item, ".json")) {  // another anatomy index (a generated pool): every anatomy it lists
+      if (!fs::exists(item)) throw std::runtime_error(item + ": anatomy index does not exist");
+      for (const AnatomyEntry& e : read_anatomy_index(item)) out.push_back({e.name, e.mesh, e.truth});
+      continue;
+    }
     if (!index_read) {
       index = read_anatomy_index(index_path);
       index_read = true;

@@ -35,7 +35,8 @@ struct AnatomySource {
 // Resolves `spec`, a comma-separated list whose items are each
 //   - a set name of the index ("train", "test", "sensitivity"): every anatomy of that set,
 //   - an anatomy name of the index ("t1_straight_y"),
-//   - a mesh path (.stl/.obj/.ply; the truth is <stem>.truth.json beside it) or a .truth.json path.
+//   - a mesh path (.stl/.obj/.ply; the truth is <stem>.truth.json beside it) or a .truth.json path,
+//   - another index's path (any other .json, e.g. a pool from gw-anatomy-pool): every anatomy it lists.
 // Index paths are relative to the repository root (the index's parent folder's parent).
 // Throws std::runtime_error naming the item that matches nothing (and the index file).
 std::vector<AnatomySource> resolve_anatomy_sources(const std::string& spec, const std::string& index_path);

@@ -1,4 +1,4 @@
-"""Writes the junction test trees' specs (run from this folder; then anatomy-gen --spec NAME/NAME.spec.json --out NAME).
+"""Writes the junction test trees' specs (run from this folder with the project's .venv/bin/python; then anatomy-gen --spec NAME/NAME.spec.json --out NAME).
 
 Two coronary-sized, tapering trees on the coronary's ellipsoidal heart (semi-axes 35, 35, 50 mm), with
 junctions the training set never had (issue 41), designed before any run on them:
@@ -19,42 +19,7 @@ import os
 
 import numpy as np
 
-AXES = np.array([35.0, 35.0, 50.0])
-STEP_MM = 5.0
-
-
-def on_surface(p):
-    return p / math.sqrt(((p / AXES) ** 2).sum())
-
-
-def surface_normal(p):
-    n = p / AXES ** 2
-    return n / np.linalg.norm(n)
-
-
-def rotate(d, axis, angle):
-    return d * math.cos(angle) + np.cross(axis, d) * math.sin(angle) + axis * axis.dot(d) * (1 - math.cos(angle))
-
-
-def walk(p, d, length_mm, curvature_per_mm):
-    """Points and unit directions of a walk on the surface starting at p along d."""
-    points, directions = [p], [d]
-    for _ in range(int(round(length_mm / STEP_MM))):
-        n = surface_normal(p)
-        d = rotate(d - n * n.dot(d), n, curvature_per_mm * STEP_MM)
-        d /= np.linalg.norm(d)
-        p = on_surface(p + STEP_MM * d)
-        points.append(p)
-        directions.append(d)
-    return points, directions
-
-
-def taper(n, r0, r1):
-    return [round(r0 + (r1 - r0) * i / max(n - 1, 1), 3) for i in range(n)]
-
-
-def lifted(points, radii):
-    return [[round(float(x), 3) for x in p + surface_normal(p) * (r + 0.3)] for p, r in zip(points, radii)]
+from guidewire_nav.heart_walk import on_surface, rotate, spec_branch, surface_normal, taper, walk
 
 
 def left_main(length_mm):
@@ -78,16 +43,6 @@ def build(children):
         branches.append(dict(name=name, parent=parent, at=at, points=points, directions=directions,
                              radius=taper(len(points), r0, 0.8)))
     return branches
-
-
-def spec_branch(branches, b):
-    out = {"name": b["name"], "points": lifted(b["points"], b["radius"]), "radius": b["radius"]}
-    if b["parent"] is not None:
-        # A child starts exactly on its parent's centreline (lifted by the parent's radius there).
-        parent = branches[b["parent"]]
-        out["points"][0] = lifted([parent["points"][b["at"]]], [parent["radius"][b["at"]]])[0]
-        out["parent"] = b["parent"]
-    return out
 
 
 TREES = {

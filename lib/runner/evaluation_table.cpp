@@ -13,6 +13,7 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "base/graph/anatomy_index.hpp"
 #include "lib/runner/controller.hpp"
 #include "lib/runner/episode_batch.hpp"
 #include "lib/runner/evaluation_progress.hpp"
@@ -173,7 +174,7 @@ std::vector<Anatomy> load_row_anatomies(const EvaluationRow& row, const Evaluati
     // The insertion point is the user's input, not the extraction's guess: take it from the truth.
     load.inlet = read_centerline(src.at(0).truth).inlet.position;
     NavigationAnatomy nav = load_navigation_anatomy(src.at(0).mesh, load);
-    nav.anatomy.name = name;
+    nav.anatomy.name = src.at(0).name;  // the index's name, or a pool row's file stem
     if (row.heart_rate_bpm > 0) {  // a beating row: the anatomy's own field at the row's rate
       HeartSettings heart;
       heart.heart_rate_bpm = row.heart_rate_bpm;
@@ -437,12 +438,27 @@ nlohmann::json run_task_settings(const nlohmann::json& run) {
           {"force_limit_N", s.value("force_limit_N", 0.0)}};
 }
 
+EvaluationRow index_row(const std::string& index_path) {
+  EvaluationRow row;
+  row.name = "pool " + index_path;
+  for (const AnatomyEntry& e : read_anatomy_index(index_path)) row.anatomies.push_back(e.truth);
+  if (row.anatomies.empty()) throw std::invalid_argument("--rows '" + index_path + "': the index lists no anatomy");
+  row.episodes = 5 * static_cast<int>(row.anatomies.size());
+  row.paper_success = -1.0;
+  return row;
+}
+
 std::vector<EvaluationRow> select_rows(const std::vector<EvaluationRow>& table, const std::string& filter) {
   if (filter.empty()) return table;
   const std::vector<std::string> texts = split_commas(filter);
   if (texts.empty()) throw std::invalid_argument("--rows '" + filter + "' names no row");
   std::vector<bool> keep(table.size(), false);
+  std::vector<EvaluationRow> pools;
   for (const std::string& t : texts) {
+    if (t.size() > 5 && t.compare(t.size() - 5, 5, ".json") == 0) {  // an anatomy index: a row of its own
+      pools.push_back(index_row(t));
+      continue;
+    }
     bool matched = false;
     for (std::size_t i = 0; i < table.size(); ++i)
       if (table[i].name.find(t) != std::string::npos) keep[i] = matched = true;
@@ -451,6 +467,7 @@ std::vector<EvaluationRow> select_rows(const std::vector<EvaluationRow>& table, 
   std::vector<EvaluationRow> out;
   for (std::size_t i = 0; i < table.size(); ++i)
     if (keep[i]) out.push_back(table[i]);
+  out.insert(out.end(), pools.begin(), pools.end());
   return out;
 }
 

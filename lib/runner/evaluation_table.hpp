@@ -29,7 +29,12 @@ struct EvaluationRow {
 std::vector<EvaluationRow> paper_table();
 
 // The rows of `table` (in its order) whose name contains one of the comma-separated texts of `filter`
-// ("" = all). Throws naming a text that matches no row, so a typo is not silently a shorter table.
+// ("" = all), then a row per text that names an anatomy index (*.json, e.g. a gw-anatomy-pool pool): index_row.
+// Throws naming a text that matches no row, so a typo is not silently a shorter table.
+// A row of every anatomy an index lists (by its truth file, so it needs no --index), 5 episodes each, named
+// "pool PATH"; no paper figure. Throws naming the file when it is unreadable or lists nothing.
+EvaluationRow index_row(const std::string& index_path);
+
 std::vector<EvaluationRow> select_rows(const std::vector<EvaluationRow>& table, const std::string& filter);
 
 struct EvaluationOptions {

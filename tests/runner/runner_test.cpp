@@ -549,6 +549,16 @@ TEST_CASE("evaluate --rows: comma-separated texts pick rows in the table's order
   CHECK(gw::select_rows(table, "coronary,deformed").size() == 4);  // a row two texts match is kept once
   CHECK_THROWS_WITH(gw::select_rows(table, "var1,coronery"), Catch::Contains("--rows 'coronery'"));
   CHECK_THROWS_WITH(gw::select_rows(table, ","), Catch::Contains("names no row"));
+  // an anatomy index is a row of its own after the table's: every anatomy it lists by its truth, 5 episodes each
+  const std::string index = std::string(GW_SOURCE_DIR) + "/anatomies/index.json";
+  const auto pool = gw::select_rows(table, "var1," + index);
+  REQUIRE(pool.size() == 2);
+  CHECK(pool[1].name == "pool " + index);
+  CHECK(pool[1].anatomies.size() > 20);
+  CHECK(pool[1].episodes == 5 * static_cast<int>(pool[1].anatomies.size()));
+  CHECK(pool[1].paper_success < 0);
+  CHECK(pool[1].anatomies[0].find(".truth.json") != std::string::npos);
+  CHECK_THROWS_WITH(gw::select_rows(table, "/nonexistent/pool.json"), Catch::Contains("/nonexistent/pool.json"));
 }
 
 TEST_CASE("evaluate --wire: the rows run with the given wire, recorded in the settings, and a bad file is refused",

@@ -37,6 +37,20 @@ TEST_CASE("anatomy sources: set names, anatomy names and paths resolve", "[task]
   const auto by_truth = gw::resolve_anatomy_sources(kT1 + ".truth.json", kIndex);
   CHECK(by_truth[0].mesh == kT1 + ".stl");
   CHECK(gw::default_anatomy_index() == kIndex);
+  // another index's path (a generated pool): every anatomy it lists, its paths relative to its folder's parent
+  const fs::path d = scratch_dir("pool_index");
+  fs::create_directories(d / "pool" / "a");
+  fs::copy_file(kT1 + ".stl", d / "pool" / "a" / "one.stl");
+  fs::copy_file(kT1 + ".truth.json", d / "pool" / "a" / "one.truth.json");
+  std::ofstream(d / "pool" / "index.json")
+      << R"({"anatomies": [{"name": "one", "set": "a", "mesh": "pool/a/one.stl", "truth": "pool/a/one.truth.json"}]})";
+  const auto pool = gw::resolve_anatomy_sources("t1_straight_y," + (d / "pool" / "index.json").string(), kIndex);
+  REQUIRE(pool.size() == 2);
+  CHECK(pool[1].name == "one");
+  CHECK(fs::exists(pool[1].mesh));
+  CHECK(fs::exists(pool[1].truth));
+  CHECK_THROWS_WITH(gw::resolve_anatomy_sources((d / "missing.json").string(), kIndex),
+                    Catch::Contains("missing.json") && Catch::Contains("does not exist"));
 }
 
 TEST_CASE("anatomy sources: clear errors", "[task][anatomy]") {

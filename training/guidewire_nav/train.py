@@ -44,7 +44,8 @@ def arg(default, help: str):
 @dataclass
 class Settings:
     out: str = arg("runs/sac", "run folder: logs, checkpoints, actor.json, curve PNG")
-    anatomies: str = arg("train", "anatomy set (or comma-separated names) the servers load")
+    anatomies: str = arg("train", "anatomy set (or comma-separated names, mesh paths, a pool's index.json) "
+                                  "the servers load")
     task: str = arg("", "task settings: a JSON file, or an inline JSON object, of TaskConfig fields "
                         "(docs/task_settings.md), sent as it is to every server (guidewire-server --task); '' = the "
                         "shipped rotation actor's task (obs/3, act/1). The paper's: training/tasks/paper.json; the "

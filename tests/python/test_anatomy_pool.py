@@ -1,0 +1,98 @@
+"""gw-anatomy-pool: the seeded anatomy distribution (issue 64 item 1) and the server loading a pool's index."""
+
+import json
+import subprocess
+
+import numpy as np
+import pytest
+
+import guidewire_nav
+from guidewire_nav import anatomy_pool
+
+
+def specs(tmp_path, seed, count, kinds="coronary,arch"):
+    out = tmp_path / f"pool_{seed}"
+    assert anatomy_pool.main(["--out", str(out), "--count", str(count), "--seed", str(seed), "--kinds", kinds,
+                              "--specs-only"]) == 0
+    index = json.loads((out / "index.json").read_text())["anatomies"]
+    return out, [json.loads((out.parent / e["spec"]).read_text()) for e in index], index
+
+
+def test_same_seed_same_specs_and_other_seeds_differ(tmp_path):
+    _, a, _ = specs(tmp_path / "a", 7, 6)
+    _, b, _ = specs(tmp_path / "b", 7, 6)
+    _, c, _ = specs(tmp_path / "c", 8, 6)
+    assert a == b
+    assert [s["branches"] for s in a] != [s["branches"] for s in c]
+    # sample i depends on (seed, i) only: a longer pool starts with the shorter one
+    _, longer, _ = specs(tmp_path / "d", 7, 9)
+    assert longer[:6] == a
+
+
+def test_coronary_trees_cover_what_the_issue_asks_for(tmp_path):
+    _, trees, index = specs(tmp_path, 3, 60, kinds="coronary")
+    assert {e["set"] for e in index} == {"coronary"}
+    radii = [r for t in trees for b in t["branches"] for r in b["radius"]]
+    assert 0.3 <= min(radii) < 0.45 and max(radii) <= 2.2
+    targets = [len(t["branches"]) - 1 for t in trees]
+    assert min(targets) >= 2 and max(targets) <= anatomy_pool.MAX_TARGETS
+    children = [sum(1 for b in t["branches"] if b.get("parent") == 0) for t in trees]
+    assert 2 in children and 3 in children  # two-way forks and trifurcations at the stem
+    assert any("deformation" in t for t in trees) and not all("deformation" in t for t in trees)
+    for t in trees:  # every distal end narrower than its branch's start
+        for b in t["branches"][1:]:
+            assert b["radius"][-1] < b["radius"][0]
+
+
+def test_arches_keep_the_great_vessels_in_order(tmp_path):
+    _, arches, _ = specs(tmp_path, 5, 4, kinds="arch")
+    for a in arches:
+        names = [b["name"] for b in a["branches"]]
+        assert names == ["aorta_descending_arch_ascending", "brachiocephalic", "left_common_carotid",
+                         "left_subclavian"]
+
+
+def test_a_bad_kind_is_refused_by_name(tmp_path, capsys):
+    with pytest.raises(SystemExit) as e:
+        anatomy_pool.main(["--out", str(tmp_path), "--count", "1", "--seed", "0", "--kinds", "coronary,vein"])
+    assert e.value.code == 2
+    assert "--kinds" in capsys.readouterr().err
+
+
+def test_a_meshed_pool_is_served_by_its_index(tmp_path):
+    gen, server = guidewire_nav.app_path("anatomy-gen"), guidewire_nav.app_path("guidewire-server")
+    if not gen.is_file() or not server.is_file():
+        pytest.skip("anatomy-gen or guidewire-server not built; set GW_BUILD_DIR")
+    out = tmp_path / "pool"
+    assert anatomy_pool.main(["--out", str(out), "--count", "2", "--seed", "11", "--jobs", "2",
+                              "--anatomy-gen", str(gen)]) == 0
+    index = json.loads((out / "index.json").read_text())["anatomies"]
+    assert len(index) == 2 and all((out.parent / e["mesh"]).is_file() for e in index)
+    # a second run keeps the meshes it finds
+    mtimes = [(out.parent / e["mesh"]).stat().st_mtime_ns for e in index]
+    assert anatomy_pool.main(["--out", str(out), "--count", "2", "--seed", "11", "--anatomy-gen", str(gen)]) == 0
+    assert mtimes == [(out.parent / e["mesh"]).stat().st_mtime_ns for e in index]
+    from guidewire_nav.env import GuidewireEnv
+    env = GuidewireEnv(anatomies=str(out / "index.json"))
+    try:
+        names = env.anatomy_names
+        assert names == [e["name"] for e in index]
+        obs, info = env.reset(seed=1)
+        assert np.all(np.isfinite(obs)) and info["anatomy"] in names
+    finally:
+        env.close()
+    bad = subprocess.run([str(server), "--port", "0", "--anatomies", str(tmp_path / "missing.json")],
+                         capture_output=True, text=True, timeout=60)
+    assert bad.returncode != 0 and "missing.json" in bad.stderr
+
+
+def test_evaluate_takes_a_pool_as_a_row(tmp_path):
+    evaluate = guidewire_nav.app_path("evaluate")
+    if not evaluate.is_file():
+        pytest.skip("evaluate not built; set GW_BUILD_DIR")
+    out, _, index = specs(tmp_path, 4, 3, kinds="coronary")
+    plan = subprocess.run([str(evaluate), "--plan", "--rows", f"var1,{out / 'index.json'}"], capture_output=True,
+                          text=True, check=True)
+    rows = json.loads(plan.stdout)["rows"]
+    assert [r["name"] for r in rows] == ["sensitivity: var1", f"pool {out / 'index.json'}"]
+    assert rows[1]["episodes"] == 5 * len(index)

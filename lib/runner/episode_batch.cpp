@@ -101,12 +101,19 @@ bool tip_folded_before_loss(const EpisodeTrace& trace) {
 
 namespace {
 
+// Whether an episode's force figures (episode_force) keep the tip's peak within 1.5 N; true for a result
+// without them (written before forces were recorded).
+bool tip_within_limit(const nlohmann::json& force) {
+  return !force.contains("peak_tip_N") || force["peak_tip_N"].get<double>() <= kRuptureForceN;
+}
+
 // Over the episodes' force figures (episode_force) under `key` of each result (or of its "recovery"):
 // {"episodes" with a figure, "mean_peak_node_N", "share_peak_node_over_1_5N", "mean_peak_total_N",
-// "share_peak_total_over_1_5N", "mean_peak_tip_N", "mean_mean_total_N"}, with a force limit "mean_push_held_s";
+// "share_peak_total_over_1_5N", "mean_peak_tip_N", "share_peak_tip_over_1_5N", "mean_mean_total_N"}, with a force
+// limit "mean_push_held_s";
 // {} when none has one.
 nlohmann::json force_summary(const std::vector<nlohmann::json>& forces) {
-  int n = 0, node_over = 0, total_over = 0;
+  int n = 0, node_over = 0, total_over = 0, tip_over = 0;
   int held_n = 0;
   double node = 0, total = 0, tip = 0, mean = 0, held = 0;
   for (const nlohmann::json& f : forces) {
@@ -122,6 +129,7 @@ nlohmann::json force_summary(const std::vector<nlohmann::json>& forces) {
     mean += f["mean_total_N"].get<double>();
     node_over += f["peak_node_N"].get<double>() > kRuptureForceN;
     total_over += f["peak_total_N"].get<double>() > kRuptureForceN;
+    tip_over += f["peak_tip_N"].get<double>() > kRuptureForceN;
   }
   if (n == 0) return nlohmann::json::object();
   nlohmann::json out = {{"episodes", n},
@@ -130,6 +138,7 @@ nlohmann::json force_summary(const std::vector<nlohmann::json>& forces) {
                         {"mean_peak_total_N", total / n},
                         {"share_peak_total_over_1_5N", static_cast<double>(total_over) / n},
                         {"mean_peak_tip_N", tip / n},
+                        {"share_peak_tip_over_1_5N", static_cast<double>(tip_over) / n},
                         {"mean_mean_total_N", mean / n}};
   if (held_n > 0) out["mean_push_held_s"] = held / held_n;
   return out;
@@ -182,6 +191,7 @@ nlohmann::json summarize_results(const nlohmann::json& results) {
   for (const std::string& o : kTraceOutcomes) outcomes[o] = recovered_outcomes[o] = 0;
   std::vector<nlohmann::json> forces, recovered_forces;
   int successes = 0, recovered = 0, with_recovery = 0, attempts_allowed = 0, attempts = 0;
+  int safe_successes = 0, safe_recovered = 0;  // ... whose peak tip force stayed within 1.5 N (issue 64's figures)
   double procedure_time = 0;
   nlohmann::json reshape_outcomes = nlohmann::json::object();
   for (const std::string& o : kTraceOutcomes) reshape_outcomes[o] = 0;
@@ -191,6 +201,7 @@ nlohmann::json summarize_results(const nlohmann::json& results) {
   for (const nlohmann::json& ep : results) {
     const std::string outcome = ep.at("outcome").get<std::string>();
     successes += outcome == "success";
+    safe_successes += outcome == "success" && tip_within_limit(ep.value("force", nlohmann::json::object()));
     outcomes[outcome] = outcomes.value(outcome, 0) + 1;
     forces.push_back(ep.value("force", nlohmann::json::object()));
     if (ep.contains("recovery")) {
@@ -198,6 +209,7 @@ nlohmann::json summarize_results(const nlohmann::json& results) {
       ++with_recovery;
       attempts_allowed = std::max(attempts_allowed, r.at("attempts_allowed").get<int>());
       recovered += r.at("outcome") == "success";
+      safe_recovered += r.at("outcome") == "success" && tip_within_limit(r.value("force", nlohmann::json::object()));
       recovered_outcomes[r.at("outcome").get<std::string>()] = recovered_outcomes.value(r.at("outcome").get<std::string>(), 0) + 1;
       attempts += r.at("attempts").get<int>();
       procedure_time += r.at("procedure_time_s").get<double>();
@@ -220,6 +232,7 @@ nlohmann::json summarize_results(const nlohmann::json& results) {
   nlohmann::json out = {{"episodes", n},
                         {"successes", successes},
                         {"success_rate", n ? static_cast<double>(successes) / n : 0.0},
+                        {"successes_tip_within_1_5N", safe_successes},
                         {"outcomes", outcomes},
                         {"results", results}};
   const nlohmann::json force = force_summary(forces);
@@ -229,6 +242,7 @@ nlohmann::json summarize_results(const nlohmann::json& results) {
                        {"episodes", with_recovery},
                        {"successes", recovered},
                        {"success_rate", static_cast<double>(recovered) / with_recovery},
+                       {"successes_tip_within_1_5N", safe_recovered},
                        {"outcomes", recovered_outcomes},
                        {"mean_attempts", static_cast<double>(attempts) / with_recovery},
                        {"mean_procedure_time_s", procedure_time / with_recovery}};

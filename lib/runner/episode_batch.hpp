@@ -50,8 +50,9 @@ bool tip_folded_before_loss(const EpisodeTrace& trace);
 // omega_at_loss (EpisodeTrace) and "folded" (tip_folded_before_loss), "force" (episode_force, N) and with
 // recovery "recovery": {attempts_allowed, attempts, outcome, detail, steps, procedure_time_s, force}],
 // "force": {mean_peak_node_N, share_peak_node_over_1_5N, mean_peak_total_N, share_peak_total_over_1_5N,
-// mean_peak_tip_N, mean_mean_total_N}, and with recovery "recovery": {attempts_allowed, episodes,
-// successes, success_rate, outcomes, mean_attempts, mean_procedure_time_s, force}, and with a tip reshape
+// mean_peak_tip_N, share_peak_tip_over_1_5N, mean_mean_total_N}, "successes_tip_within_1_5N" (successes whose peak
+// tip force stayed within 1.5 N), and with recovery "recovery": {attempts_allowed, episodes, successes,
+// successes_tip_within_1_5N, success_rate, outcomes, mean_attempts, mean_procedure_time_s, force}, and with a tip reshape
 // (TraceOptions::reshaped) per result "reshape": {tip_curvature_per_mm, tip_length_mm, reshaped, outcome, detail, attempts, steps,
 // procedure_time_s, withdrawal_s (when reshaped), force} over both passes and "reshape": {tip_curvature_per_mm, tip_length_mm,
 // episodes, successes, success_rate, outcomes, reshaped, mean_procedure_time_s, force}}. Outcome, steps,

@@ -245,3 +245,23 @@ TEST_CASE("merge: shards of one run (evaluate --episodes) join into that run", "
   last["settings"] = {{"seed", 7}, {"episodes", {0, 1}}};
   CHECK(gw::merge_evaluations({first, last}, {"s0.json", "s2.json"})["settings"].contains("merged_from"));
 }
+
+TEST_CASE("summary: successes whose peak tip force stayed within 1.5 N, strict and with recovery", "[runner][merge]") {
+  auto episode = [](const std::string& outcome, double tip_N, const std::string& recovered, double procedure_tip_N) {
+    auto force = [](double tip) {
+      return nlohmann::json{{"peak_node_N", tip}, {"peak_total_N", tip}, {"peak_tip_N", tip}, {"mean_total_N", 0.1}};
+    };
+    return nlohmann::json{{"outcome", outcome}, {"force", force(tip_N)},
+                          {"recovery", {{"attempts_allowed", 3}, {"attempts", 1}, {"outcome", recovered},
+                                        {"procedure_time_s", 10.0}, {"force", force(procedure_tip_N)}}}};
+  };
+  const nlohmann::json results = {episode("success", 0.4, "success", 0.4), episode("success", 2.0, "success", 2.0),
+                                  episode("wrong_branch", 0.3, "success", 1.2), episode("wrong_branch", 0.3, "success", 1.6),
+                                  episode("stuck", 3.0, "stuck", 3.0)};
+  const nlohmann::json s = gw::summarize_results(results);
+  CHECK(s["successes"] == 2);
+  CHECK(s["successes_tip_within_1_5N"] == 1);
+  CHECK(s["recovery"]["successes"] == 4);
+  CHECK(s["recovery"]["successes_tip_within_1_5N"] == 2);
+  CHECK(s["force"]["share_peak_tip_over_1_5N"].get<double>() == Approx(0.4));
+}

@@ -2,6 +2,7 @@
 // (procedure.hpp) above the strict episode.
 #include "task/episode.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -53,6 +54,7 @@ StepOutcome step_episode(const NavigationTask& task, EpisodeState& s, const Acti
   observe_episode(task, s, false);
   s.obs[obs_index::kAction] = command.rotation;
   s.obs[obs_index::kInsertion] = command.control.push_mm_per_s / c.push_mm_per_s;
+  s.obs[obs_index::kTipForce] = std::min(physics.peak.tip_mN / (1000.0 * kTipForceScaleN), kTipForceCap);
   if (command.retracting) return retraction_step(task, s, command, physics);
 
   track_progress(c, s);

@@ -10,7 +10,7 @@ const std::array<const char*, kObservationSize>& observation_names() {
   static const std::array<const char*, kObservationSize> names = {
       "theta_t_1", "theta_t_2", "theta_t_3", "theta_prev_1", "theta_prev_2", "theta_prev_3",
       "lambda_t",  "lambda_prev", "action",  "omega",        "speed",        "omega_side",
-      "insertion", "wrong_branch"};
+      "insertion", "wrong_branch", "tip_force"};
   return names;
 }
 
@@ -27,6 +27,8 @@ void observation_bounds(const TaskConfig& config, Observation& low, Observation&
   high[obs_index::kInsertion] = 1.0;
   low[obs_index::kWrongBranch] = 0.0;
   high[obs_index::kWrongBranch] = 1.0;
+  low[obs_index::kTipForce] = 0.0;
+  high[obs_index::kTipForce] = kTipForceCap;
   low[obs_index::kSpeed] = -config.max_abs_speed_ratio;
   high[obs_index::kSpeed] = config.max_abs_speed_ratio;
 }

@@ -2,7 +2,7 @@
 // The observation of paper 2.2.3, Omega = {theta_t, theta_{t-n dt}, lambda_t, lambda_{t-n dt}, a_t, omega, s},
 // as a fixed-size vector. Layout "guidewire-nav/obs/1" (the paper's omega) is the first 11 entries;
 // "guidewire-nav/obs/3" is the first 12, omega in the approach plane and its sine; "guidewire-nav/obs/4" and
-// "/obs/6" are obs/3 with junctions combined or read as k-way (docs/junctions.md); "/obs/5" all 14. The layout is TaskConfig::observation (observation_layout.hpp):
+// "/obs/6" are obs/3 with junctions combined or read as k-way (docs/junctions.md); "/obs/5" the first 14, "/obs/8" all 15. The layout is TaskConfig::observation (observation_layout.hpp):
 //   [0..2]  theta_t      t_i . c_i, i = 1..3: unit wire tangent at 0, 2, 4 mm from the tip (t_i) against
 //                        the unit centerline tangent h = 4 mm ahead of that point's projection (c_i)
 //   [3..5]  theta_{t-n dt}  the same one env step earlier (n dt = frame_skip * dt)
@@ -34,6 +34,10 @@
 //                        wrong_branch_entered.hpp), else 0 (obs/5 only). Why: an actor that may pull back must
 //                        know it went the wrong way, as a clinician sees it on the fluoroscope; the paper's
 //                        entries barely change once the tip is in a wrong child
+//   [14]    tip_force    the largest wall force on the wire's distal 1 mm during the last env step, over 1.5 N (the
+//                        rupture threshold the force figures use), clipped to [0, kTipForceCap] (obs/8 only; 0 at
+//                        reset). Why: a clinician feels the wire push back and stops; the other entries show a jam
+//                        only as a stalled speed, after the force has built up (issue 64: pushed into jams at 10-100 N)
 // Why 3 products t_i . c_i and not the figure's 3x3 t_i . c_j: the text defines theta_i = t_i . c_i
 // explicitly and calls theta an N-vector; the 6 off-diagonal products add mostly c_i . c_j-like terms,
 // i.e. the local curvature of the centerline itself, which is the anatomy-specific information the
@@ -52,8 +56,11 @@ using Observation = std::array<double, kObservationSize>;
 
 namespace obs_index {
 inline constexpr int kTheta = 0, kThetaPrev = 3, kLambda = 6, kLambdaPrev = 7, kAction = 8, kOmega = 9, kSpeed = 10,
-                     kOmegaSide = 11, kInsertion = 12, kWrongBranch = 13;
+                     kOmegaSide = 11, kInsertion = 12, kWrongBranch = 13, kTipForce = 14;
 }
+
+inline constexpr double kTipForceScaleN = 1.5;  // tip_force = the tip's wall force / this
+inline constexpr double kTipForceCap = 4.0;     // ... clipped here (6 N)
 
 // Names of the entries, e.g. "theta_t_1", "lambda_prev", "omega".
 const std::array<const char*, kObservationSize>& observation_names();

@@ -15,21 +15,27 @@ struct Layout {
   bool omega_side;
   JunctionModel junctions;
   bool push_pull;
+  bool tip_force;
 };
 // obs/6 is obs/3 with k-way junctions read together (close forks apart): the same entries again.
-// obs/5 is obs/3 with the push/pull actor's two entries (act/2) after omega_side.
+// obs/5 is obs/3 with the push/pull actor's two entries (act/2) after omega_side; obs/8 is obs/5 with the tip's
+// wall force after them.
 constexpr Layout kLayouts[] = {
-    {"guidewire-nav/obs/1", OmegaPlane::kCorrectBranch, false, JunctionModel::kSeparate, false},
-    {"guidewire-nav/obs/3", OmegaPlane::kApproach, true, JunctionModel::kSeparate, false},
-    {"guidewire-nav/obs/4", OmegaPlane::kApproach, true, JunctionModel::kCombined, false},
-    {"guidewire-nav/obs/5", OmegaPlane::kApproach, true, JunctionModel::kSeparate, true},
-    {"guidewire-nav/obs/6", OmegaPlane::kApproach, true, JunctionModel::kKWay, false}};
+    {"guidewire-nav/obs/1", OmegaPlane::kCorrectBranch, false, JunctionModel::kSeparate, false, false},
+    {"guidewire-nav/obs/3", OmegaPlane::kApproach, true, JunctionModel::kSeparate, false, false},
+    {"guidewire-nav/obs/4", OmegaPlane::kApproach, true, JunctionModel::kCombined, false, false},
+    {"guidewire-nav/obs/5", OmegaPlane::kApproach, true, JunctionModel::kSeparate, true, false},
+    {"guidewire-nav/obs/6", OmegaPlane::kApproach, true, JunctionModel::kKWay, false, false},
+    {"guidewire-nav/obs/8", OmegaPlane::kApproach, true, JunctionModel::kSeparate, true, true}};
 }  // namespace
 
 const char* ObservationLayout::name() const {
   for (const Layout& l : kLayouts)
-    if (l.plane == omega_plane && l.omega_side == omega_side && l.junctions == junctions && l.push_pull == push_pull)
+    if (l.plane == omega_plane && l.omega_side == omega_side && l.junctions == junctions && l.push_pull == push_pull &&
+        l.tip_force == tip_force)
       return l.name;
+  if (tip_force && !push_pull)
+    throw std::invalid_argument("the tip-force entry comes after the push/pull entries (layout obs/8)");
   if (push_pull)
     throw std::invalid_argument("the push/pull entries need omega's plane 'approach', omega_side and separate junctions (layout obs/5)");
   if (omega_side && omega_plane != OmegaPlane::kApproach)
@@ -43,13 +49,14 @@ const char* ObservationLayout::name() const {
 }
 
 int ObservationLayout::size() const {
+  if (tip_force) return kTipForceObservationSize;
   return push_pull ? kPushPullObservationSize : omega_side ? kSideObservationSize : kPaperObservationSize;
 }
 
 ObservationLayout ObservationLayout::parse(const std::string& name) {
   std::string known;
   for (const Layout& l : kLayouts) {
-    if (name == l.name) return {l.plane, l.omega_side, l.junctions, l.push_pull};
+    if (name == l.name) return {l.plane, l.omega_side, l.junctions, l.push_pull, l.tip_force};
     known += std::string(known.empty() ? "" : ", ") + l.name;
   }
   throw std::invalid_argument("observation layout '" + name + "' is not one of " + known);

@@ -10,6 +10,8 @@
 //   guidewire-nav/obs/5  obs/3 + the last insertion action and a wrong-branch flag, 14 entries: the push/pull
 //                        actor's (action layout act/2, action_layout.hpp; docs/recovery.md)
 //   guidewire-nav/obs/6  obs/3 with k-way junctions (docs/junctions.md), 12 entries
+//   guidewire-nav/obs/8  obs/5 + the tip's wall force, 15 entries: the generalist controller's (act/2; issue 64,
+//                        docs/anatomy_pool.md)
 // Retired (no shipped actor used them; docs/policy_history.md "Retired settings"): obs/2 (obs/3 without omega_side)
 // and obs/7 (obs/5 and the time since the tip last progressed).
 #include <string>
@@ -18,10 +20,11 @@ namespace gw {
 
 inline constexpr int kThetaCount = 3;
 // Every entry is computed on every step; a layout hands its first size() entries to the actor.
-inline constexpr int kObservationSize = 2 * kThetaCount + 8;
+inline constexpr int kObservationSize = 2 * kThetaCount + 9;
 inline constexpr int kPaperObservationSize = 2 * kThetaCount + 5;  // obs/1: without omega_side
 inline constexpr int kSideObservationSize = kPaperObservationSize + 1;  // obs/3, obs/4, obs/6: with omega_side
 inline constexpr int kPushPullObservationSize = kSideObservationSize + 2;  // obs/5: with the push/pull entries
+inline constexpr int kTipForceObservationSize = kPushPullObservationSize + 1;  // obs/8: and the tip's wall force
 
 // The plane omega is measured in (observation.hpp, omega).
 enum class OmegaPlane {
@@ -57,12 +60,14 @@ struct ObservationLayout {
   JunctionModel junctions = JunctionModel::kSeparate;  // kCombined: obs/4, kKWay: obs/6
   bool push_pull = false;                          // obs/5: the insertion action and the wrong-branch flag
                                                    // as entries 13 and 14 (the act/2 actor's)
+  bool tip_force = false;                          // obs/8: obs/5 and the tip's wall force as entry 15
 
   // The layout's name; throws std::invalid_argument for a combination no layout has (omega_side in the
   // paper's plane; the approach plane without omega_side; combined junctions without omega_side; push/pull
   // entries without obs/3), naming why.
   const char* name() const;
-  // How many leading observation entries the actor takes: 11, 12 with omega_side, 14 with push_pull.
+  // How many leading observation entries the actor takes: 11, 12 with omega_side, 14 with push_pull, 15 with
+  // tip_force.
   int size() const;
   // The layout called `name`; throws std::invalid_argument naming the known layouts.
   static ObservationLayout parse(const std::string& name);

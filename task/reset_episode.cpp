@@ -67,6 +67,7 @@ EpisodeState reset_episode(const NavigationTask& task, int anatomy, int target_i
   s.obs[obs_index::kAction] = 0.0;
   s.obs[obs_index::kInsertion] = 1.0;
   s.obs[obs_index::kWrongBranch] = 0.0;
+  s.obs[obs_index::kTipForce] = 0.0;
   s.stall.best_progress_mm = s.progress_mm;
   s.stall.inserted_at_best_mm = s.wire.inserted_length_mm;
   s.procedure.max_steps =

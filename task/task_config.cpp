@@ -48,7 +48,7 @@ void check_task_config(const TaskConfig& c) {
   require(c.reward_wrong_branch >= 0 && std::isfinite(c.reward_wrong_branch), "reward_wrong_branch", ">= 0");
   require(c.reward_time_per_step >= 0 && std::isfinite(c.reward_time_per_step), "reward_time_per_step", ">= 0");
   require((c.action == ActionLayout::kRotationInsertion) == c.observation.push_pull, "observation",
-          "obs/5 (with the insertion and wrong-branch entries) exactly when the action is act/2 (push/pull)");
+          "obs/5 or obs/8 (with the insertion and wrong-branch entries) exactly when the action is act/2 (push/pull)");
   require(c.reward_force_per_N >= 0 && std::isfinite(c.reward_force_per_N), "reward_force_per_N", ">= 0 (0 = off)");
   require(!c.recovery_assist || c.recovery_attempts > 0, "recovery_assist (--recovery-assist)",
           "used with recovery_attempts > 0 (--recovery K: the assist pulls back within those K attempts)");

@@ -94,10 +94,12 @@ auto named(const std::string& key, Parse parse) {
 }
 
 json observation_json(const ObservationLayout& o) {
-  return {{"omega_plane", omega_plane_name(o.omega_plane)},
-          {"omega_side", o.omega_side},
-          {"junctions", junction_model_name(o.junctions)},
-          {"push_pull", o.push_pull}};
+  json j = {{"omega_plane", omega_plane_name(o.omega_plane)},
+            {"omega_side", o.omega_side},
+            {"junctions", junction_model_name(o.junctions)},
+            {"push_pull", o.push_pull}};
+  if (o.tip_force) j["tip_force"] = true;  // only when on: the task JSON of every other layout is as before obs/8
+  return j;
 }
 
 ObservationLayout observation_from_json(const json& v, ObservationLayout o) {
@@ -109,7 +111,8 @@ ObservationLayout observation_from_json(const json& v, ObservationLayout o) {
     else if (key == "omega_side") o.omega_side = flag(value, name);
     else if (key == "junctions") o.junctions = named(name, [&] { return parse_junction_model(text(value, name)); });
     else if (key == "push_pull") o.push_pull = flag(value, name);
-    else refuse(name, "is not a task setting (observation has omega_plane, omega_side, junctions, push_pull; "
+    else if (key == "tip_force") o.tip_force = flag(value, name);
+    else refuse(name, "is not a task setting (observation has omega_plane, omega_side, junctions, push_pull, tip_force; "
                       "docs/task_settings.md)");
   }
   return o;

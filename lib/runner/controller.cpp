@@ -34,7 +34,7 @@ class PolicyController final : public Controller {
                                actor_.action_layout() + " has " + std::to_string(action_layout_size(action_layout_)));
     if (layout_.push_pull != (action_layout_ == ActionLayout::kRotationInsertion))
       throw std::runtime_error(path + ": the actor's layouts do not go together: " + actor_.obs_layout() + " with " +
-                               actor_.action_layout() + " (obs/5 goes with act/2, the others with act/1)");
+                               actor_.action_layout() + " (obs/5 and obs/8 go with act/2, the others with act/1)");
     obs_.resize(size_);
     action_.resize(actor_.action_size());
   }
@@ -46,6 +46,7 @@ class PolicyController final : public Controller {
     // reading (the entries mean the same on two-way forks), as the user set it.
     if (layout_.junctions != JunctionModel::kSeparate) config.observation.junctions = layout_.junctions;
     config.observation.push_pull = layout_.push_pull;
+    config.observation.tip_force = layout_.tip_force;
     config.action = action_layout_;
   }
   Action act(const Observation& obs) override {

@@ -13,7 +13,7 @@
 namespace gw {
 namespace {
 
-// The observation entries a trace keeps: obs/3's twelve (every layout but obs/5), or all of the layout's.
+// The observation entries a trace keeps: obs/3's twelve (every layout but obs/5 and obs/8), or all of the layout's.
 int traced_entries(const TaskConfig& c) { return std::max(kSideObservationSize, c.observation.size()); }
 
 void record_frame(const NavigationTask& task, const EpisodeState& s, const StepInfo& info, const Action& action,

@@ -141,3 +141,27 @@ def test_widened_rotation_actor_starts_the_push_pull_actor(tmp_path):
     assert np.max(np.abs(expected - both)) < 1e-5
     with pytest.raises(ValueError, match="obs/3 rotation actor"):
         widen_to_push_pull(widened)
+
+
+def test_widened_push_pull_actor_starts_the_tip_force_actor(tmp_path):
+    """The shipped push/pull actor (obs/5) widened for an obs/8 task: both outputs are the original's on every obs/8
+    observation whatever the tip force, in the C++ runtime, which reads the new layout's 15 entries."""
+    import json
+
+    from guidewire_nav.export_actor import widen_to_tip_force
+
+    binary = _policy_run()
+    shipped = Path(__file__).resolve().parents[2] / "policy" / "trained" / "sac_actor_push_pull.json"
+    original = json.loads(shipped.read_text())
+    widened = widen_to_tip_force(original)
+    assert (widened["obs_layout"], widened["obs_size"]) == ("guidewire-nav/obs/8", 15)
+    (tmp_path / "widened.json").write_text(json.dumps(widened))
+    rng = np.random.default_rng(4)
+    obs = rng.uniform(-1, 1, (300, 15)).astype(np.float32)
+    obs[:, 13] = rng.integers(0, 2, 300)  # wrong-branch flag
+    obs[:, 14] = rng.uniform(0, 4, 300)  # tip force over 1.5 N
+    before = _run(binary, shipped, obs[:, :14])
+    after = _run(binary, tmp_path / "widened.json", obs)
+    assert np.max(np.abs(after - before)) < 1e-6
+    with pytest.raises(ValueError, match="obs/5 push/pull actor"):
+        widen_to_tip_force(widened)

@@ -17,7 +17,7 @@ gw::TaskConfig changed_config() {
   c.max_start_tilt_rad = 0.2;
   c.action = gw::ActionLayout::kRotationInsertion;
   // every observation field away from its default: valid keys, but no layout has them together
-  c.observation = {gw::OmegaPlane::kCorrectBranch, false, gw::JunctionModel::kCombined, true};
+  c.observation = {gw::OmegaPlane::kCorrectBranch, false, gw::JunctionModel::kCombined, true, true};
   c.tip_sample_spacing_mm = 1.5;
   c.lookahead_mm = 5.0;
   c.branch_direction_mm = 7.0;
@@ -69,8 +69,8 @@ TEST_CASE("task JSON: a round trip keeps every field, and every field is written
     CHECK(defaults.at(key) != value);
   }
   for (const auto& [key, value] : j.at("observation").items()) {
-    INFO("observation." << key);
-    CHECK(defaults.at("observation").at(key) != value);
+    INFO("observation." << key);  // tip_force is written only when true (obs/8), so the defaults lack it
+    CHECK(defaults.at("observation").value(key, nlohmann::json()) != value);
   }
 }
 
@@ -89,6 +89,11 @@ TEST_CASE("task JSON: a partial object changes only its keys, and the observatio
   const gw::TaskConfig kway = gw::task_config_from_json({{"observation", {{"junctions", "kway"}}}});
   CHECK(kway.observation.junctions == gw::JunctionModel::kKWay);
   CHECK(kway.observation.omega_side == gw::TaskConfig{}.observation.omega_side);
+  const gw::TaskConfig generalist = gw::task_config_from_json(
+      {{"action", "guidewire-nav/act/2"}, {"observation", "guidewire-nav/obs/8"}});
+  CHECK(generalist.observation.tip_force);
+  CHECK(gw::task_config_to_json(generalist)["observation"]["tip_force"] == true);
+  CHECK_FALSE(gw::task_config_to_json(gw::TaskConfig{})["observation"].contains("tip_force"));
 }
 
 TEST_CASE("task JSON: the defaults are the shipped rotation actor's task (obs/3, act/1, its reward sigmoid)") {

@@ -225,7 +225,7 @@ TEST_CASE("reward sigmoid can be shifted and steepened", "[task]") {
 }
 
 TEST_CASE("observation layout is fixed and bounded", "[task]") {
-  CHECK(gw::kObservationSize == 14);
+  CHECK(gw::kObservationSize == 15);
   CHECK(std::string(gw::TaskConfig{}.observation.name()) == "guidewire-nav/obs/3");  // the shipped actor's
   gw::ObservationLayout layout;
   CHECK(std::string(layout.name()) == "guidewire-nav/obs/3");
@@ -241,6 +241,13 @@ TEST_CASE("observation layout is fixed and bounded", "[task]") {
   CHECK(std::string(layout.name()) == "guidewire-nav/obs/5");
   CHECK(layout.size() == 14);
   CHECK(gw::ObservationLayout::parse("guidewire-nav/obs/5").push_pull);
+  layout.tip_force = true;  // the generalist's layout: obs/5 and the tip's wall force
+  CHECK(std::string(layout.name()) == "guidewire-nav/obs/8");
+  CHECK(layout.size() == 15);
+  layout.push_pull = false;  // not without the push/pull entries
+  CHECK_THROWS_WITH(layout.name(), Catch::Contains("obs/8"));
+  layout.push_pull = true;
+  layout.tip_force = false;
   CHECK_THROWS_WITH(gw::ObservationLayout::parse("guidewire-nav/obs/7"), Catch::Contains("is not one of"));
   layout.omega_side = false;  // not without omega's sine
   CHECK_THROWS_WITH(layout.name(), Catch::Contains("obs/5"));
@@ -249,12 +256,13 @@ TEST_CASE("observation layout is fixed and bounded", "[task]") {
   layout.omega_plane = gw::OmegaPlane::kCorrectBranch;  // no layout has the sine in the paper's plane
   CHECK_THROWS_WITH(layout.name(), Catch::Contains("approach"));
   for (const char* name : {"guidewire-nav/obs/1", "guidewire-nav/obs/3", "guidewire-nav/obs/4", "guidewire-nav/obs/5",
-                           "guidewire-nav/obs/6"})
+                           "guidewire-nav/obs/6", "guidewire-nav/obs/8"})
     CHECK(std::string(gw::ObservationLayout::parse(name).name()) == name);
   CHECK_THROWS_WITH(gw::ObservationLayout::parse("guidewire-nav/obs/2"),
                     Catch::Contains("guidewire-nav/obs/1") && Catch::Contains("guidewire-nav/obs/3"));
   CHECK(std::string(gw::observation_names()[gw::obs_index::kOmegaSide]) == "omega_side");
   CHECK(std::string(gw::observation_names()[gw::obs_index::kWrongBranch]) == "wrong_branch");
+  CHECK(std::string(gw::observation_names()[gw::obs_index::kTipForce]) == "tip_force");
   CHECK(gw::parse_omega_plane("approach") == gw::OmegaPlane::kApproach);
   CHECK_THROWS_WITH(gw::parse_omega_plane("sideways"), Catch::Contains("correct_branch, approach"));
   CHECK(std::string(gw::observation_names()[gw::obs_index::kOmega]) == "omega");

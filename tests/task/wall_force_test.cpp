@@ -56,6 +56,24 @@ TEST_CASE("wall force: StepInfo reports the step's contact force, positive once 
   CHECK(touched);
 }
 
+TEST_CASE("obs/8: the tip-force entry is the env step's tip force over 1.5 N (clipped) and 0 at reset", "[task][force]") {
+  gw::TaskConfig config;
+  config.action = gw::ActionLayout::kRotationInsertion;
+  config.observation = gw::ObservationLayout::parse("guidewire-nav/obs/8");
+  const gw::NavigationTask task =
+      gw::make_navigation_task(config, gw::default_wire_params(), gw::load_anatomies("train", kIndex));
+  gw::EpisodeState s = gw::reset_episode(task, 3, 1, 5);  // t4: an S-curve, the wire meets the wall
+  CHECK(s.obs[gw::obs_index::kTipForce] == 0.0);
+  bool pressed = false;
+  for (int k = 0; k < 400 && !s.done; ++k) {
+    const gw::StepOutcome out = gw::step_episode(task, s, gw::Action{0.0, 1.0});
+    const double expected = std::min(out.info.tip_force_mN / 1500.0, gw::kTipForceCap);
+    REQUIRE(out.obs[gw::obs_index::kTipForce] == Approx(expected).margin(1e-12));
+    pressed = pressed || expected > 0;
+  }
+  CHECK(pressed);
+}
+
 TEST_CASE("recovery settings: off by default, checked", "[task][recovery]") {
   gw::TaskConfig c;
   CHECK(c.recovery_attempts == 0);

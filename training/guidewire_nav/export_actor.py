@@ -175,6 +175,27 @@ def widen_to_push_pull(d: dict, insertion_bias: float = PUSH_PULL_INSERTION_BIAS
     return out
 
 
+def widen_to_tip_force(d: dict) -> dict:
+    """A push/pull actor (obs/5, act/2) as the start of one that also reads the tip's wall force (obs/8).
+
+    in:  d, an actor dictionary of layout guidewire-nav/obs/5 and guidewire-nav/act/2
+    out: a new dictionary of layout obs/8 whose outputs are d's on every observation (the tip-force input gets zero
+         weights), so fine-tuning starts from the push/pull actor and learns what to do with the force."""
+    if d.get("obs_layout") != "guidewire-nav/obs/5" or d.get("action_size") != 2:
+        raise ValueError(f"widen_to_tip_force: need an obs/5 push/pull actor (action size 2), got "
+                         f"{d.get('obs_layout')!r} with action size {d.get('action_size')!r}")
+    if d.get("obs_normalization"):
+        raise ValueError("widen_to_tip_force: an actor with observation normalisation is not supported")
+    layers = copy.deepcopy(d["layers"])
+    rows, cols = layers[0]["shape"]
+    w = np.asarray(layers[0]["weight"], dtype=np.float64).reshape(rows, cols)
+    layers[0]["weight"] = np.hstack([w, np.zeros((rows, 1))]).reshape(-1).tolist()
+    layers[0]["shape"] = [rows, cols + 1]
+    out = {**copy.deepcopy(d), "obs_size": cols + 1, "obs_layout": "guidewire-nav/obs/8", "layers": layers}
+    out["source"] = {**d.get("source", {}), "widened_from": d.get("obs_layout")}
+    return out
+
+
 def load_actor_json(model, path, log_std: float = -2.3) -> dict:
     """The inverse of the export, for fine-tuning a shipped actor whose critic was not kept: copy the
     JSON's layers (`path`: a file, or the dictionary itself) into `model`'s actor (latent_pi + mu) and

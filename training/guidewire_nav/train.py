@@ -159,13 +159,16 @@ def task_settings(s: Settings) -> dict:
 def with_actor_layouts(task: dict, actor_path: str) -> dict:
     """--init-actor: the task takes the actor's observation and action layouts (its obs_layout, action_layout) where
     it does not name them, so an actor fine-tunes in its own task (the paper's obs/1 actor needs no --task); a task
-    that names other layouts is refused, naming both. A rotation actor (act/1) starting an act/2 task is the one
-    mismatch allowed (export_actor.widen_to_push_pull)."""
+    that names other layouts is refused, naming both. The mismatches allowed are the widenings: a rotation actor
+    (act/1) starting an act/2 task (export_actor.widen_to_push_pull), an obs/5 actor starting an obs/8 task
+    (export_actor.widen_to_tip_force), or both."""
     actor = read_json_argument("--init-actor", actor_path, "give an exported actor JSON")
     if not isinstance(actor, dict):
         raise SystemExit(f"--init-actor: {actor_path}: not an actor JSON (an object with obs_layout and layers)")
     if task.get("action") == "guidewire-nav/act/2" and actor.get("action_size") == 1:
         return task  # widened: the push/pull task keeps its own layouts
+    if task.get("observation") == "guidewire-nav/obs/8" and actor.get("obs_layout") == "guidewire-nav/obs/5":
+        return task  # widened: the tip-force input starts with zero weights
     out = dict(task)
     for key, layout in (("observation", actor.get("obs_layout")), ("action", actor.get("action_layout"))):
         if not isinstance(layout, str) or not layout.startswith("guidewire-nav/"):
@@ -518,13 +521,15 @@ def make_model(s: Settings, out: Path, vec_env, eval_env, resume_from) -> SACWit
         model = SACWithActorRate("MlpPolicy", vec_env, ent_coef=s.ent_coef,
                                  policy_kwargs={"net_arch": [int(n) for n in s.net_arch.split(",")]}, **sac_settings)
     if s.init_actor:  # a shipped actor without its critics: only the mean is kept, the critics start fresh
-        from guidewire_nav.export_actor import load_actor_json, widen_to_push_pull
+        from guidewire_nav.export_actor import load_actor_json, widen_to_push_pull, widen_to_tip_force
 
         start_actor = json.loads(Path(s.init_actor).read_text())
         spec = eval_env.unwrapped.spec_reply  # the task's layouts, as the server says them
         if spec.get("action_layout") == "guidewire-nav/act/2" and start_actor.get("action_size") == 1:
             # a rotation actor starts the push/pull one
             start_actor = widen_to_push_pull(start_actor)
+        if spec.get("obs_layout") == "guidewire-nav/obs/8" and start_actor.get("obs_layout") == "guidewire-nav/obs/5":
+            start_actor = widen_to_tip_force(start_actor)  # the tip-force input starts with zero weights
         load_actor_json(model, start_actor, log_std=s.init_log_std)
     model.set_logger(configure(str(out / "logs"), ["csv", "tensorboard"]))
     return model

@@ -441,7 +441,11 @@ nlohmann::json run_task_settings(const nlohmann::json& run) {
 EvaluationRow index_row(const std::string& index_path) {
   EvaluationRow row;
   row.name = "pool " + index_path;
-  for (const AnatomyEntry& e : read_anatomy_index(index_path)) row.anatomies.push_back(e.truth);
+  for (const AnatomyEntry& e : read_anatomy_index(index_path)) {
+    // relative to the working directory where it lies below it, so a results.json names no machine's folders
+    const std::string rel = std::filesystem::path(e.truth).lexically_relative(std::filesystem::current_path()).string();
+    row.anatomies.push_back(rel.empty() || rel.rfind("..", 0) == 0 ? e.truth : rel);
+  }
   if (row.anatomies.empty()) throw std::invalid_argument("--rows '" + index_path + "': the index lists no anatomy");
   row.episodes = 5 * static_cast<int>(row.anatomies.size());
   row.paper_success = -1.0;

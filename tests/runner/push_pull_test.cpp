@@ -254,9 +254,9 @@ TEST_CASE("push/pull: an act/2 actor sets the task's layouts and its insertion r
                     Catch::Contains("unknown observation"));  // obs/7 is retired (docs/policy_history.md)
   // Layouts that do not go together, or sizes that are not the layout's, are refused by name.
   CHECK_THROWS_WITH(gw::make_controller("policy", write("guidewire-nav/obs/5", 14, "guidewire-nav/act/1", 1)),
-                    Catch::Contains("obs/5 goes with act/2"));
+                    Catch::Contains("obs/5 and obs/8 go with act/2"));
   CHECK_THROWS_WITH(gw::make_controller("policy", write("guidewire-nav/obs/3", 12, "guidewire-nav/act/2", 2)),
-                    Catch::Contains("obs/5 goes with act/2"));
+                    Catch::Contains("obs/5 and obs/8 go with act/2"));
   CHECK_THROWS_WITH(gw::make_controller("policy", write("guidewire-nav/obs/5", 14, "guidewire-nav/act/2", 1)),
                     Catch::Contains("outputs 1") && Catch::Contains("has 2"));
   CHECK_THROWS_WITH(gw::make_controller("policy", write("guidewire-nav/obs/5", 14, "guidewire-nav/act/9", 2)),

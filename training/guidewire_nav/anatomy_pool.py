@@ -112,13 +112,10 @@ def too_close(branches):
     for i in range(len(branches)):
         for j in range(i):
             (pi, ri), (pj, rj) = dense[i], dense[j]
-            near_i = np.zeros(len(pi), bool)
-            near_j = np.zeros(len(pj), bool)
-            for a, other, near, anchor in ((i, j, near_i, pi), (j, i, near_j, pj)):
-                # exclude the first 3 x (radius sum) mm of a child near any branch it is related to
-                if branches[a]["parent"] is not None:
-                    along = np.arange(len(anchor)) * STEP_MM / 4
-                    near |= along < 3 * (ri.max() + rj.max()) + 2
+            # a child's first 3 x (radius sum) + 2 mm is its junction: left out (the stem has none)
+            skip = 3 * (ri.max() + rj.max()) + 2
+            near_i = (np.arange(len(pi)) * STEP_MM / 4 < skip) & (branches[i]["parent"] is not None)
+            near_j = (np.arange(len(pj)) * STEP_MM / 4 < skip) & (branches[j]["parent"] is not None)
             d = np.linalg.norm(pi[~near_i][:, None] - pj[~near_j][None], axis=2)
             if d.size and (d - ri[~near_i][:, None] - rj[~near_j][None]).min() < 0.6:
                 return True

@@ -141,6 +141,18 @@ def export_sac_actor(model, path, obs_layout: str = "unspecified", vecnormalize=
 PUSH_PULL_INSERTION_BIAS = 2.0  # tanh(2) = 0.96: a widened actor starts out pushing at 96% of the push speed
 
 
+def widened_layers(d: dict, extra: int, what: str) -> list:
+    """A copy of d's layers whose first takes `extra` more inputs, with zero weights (what: the caller, for errors)."""
+    if d.get("obs_normalization"):
+        raise ValueError(f"{what}: an actor with observation normalisation is not supported")
+    layers = copy.deepcopy(d["layers"])
+    rows, cols = layers[0]["shape"]
+    w = np.asarray(layers[0]["weight"], dtype=np.float64).reshape(rows, cols)
+    layers[0]["weight"] = np.hstack([w, np.zeros((rows, extra))]).reshape(-1).tolist()
+    layers[0]["shape"] = [rows, cols + extra]
+    return layers
+
+
 def widen_to_push_pull(d: dict, insertion_bias: float = PUSH_PULL_INSERTION_BIAS) -> dict:
     """A rotation actor (obs/3, act/1) as the start of a push/pull actor (obs/5).
 
@@ -153,20 +165,13 @@ def widen_to_push_pull(d: dict, insertion_bias: float = PUSH_PULL_INSERTION_BIAS
     if d.get("obs_layout") != "guidewire-nav/obs/3" or d.get("action_size") != 1:
         raise ValueError(f"widen_to_push_pull: need an obs/3 rotation actor (action size 1), got "
                          f"{d.get('obs_layout')!r} with action size {d.get('action_size')!r}")
-    if d.get("obs_normalization"):
-        raise ValueError("widen_to_push_pull: an actor with observation normalisation is not supported")
-    layers = copy.deepcopy(d["layers"])
-    first, last = layers[0], layers[-1]
-    rows, cols = first["shape"]
-    w = np.asarray(first["weight"], dtype=np.float64).reshape(rows, cols)
-    extra = 2
-    first["weight"] = np.hstack([w, np.zeros((rows, extra))]).reshape(-1).tolist()
-    first["shape"] = [rows, cols + extra]
+    layers = widened_layers(d, 2, "widen_to_push_pull")
+    last = layers[-1]
     hidden = last["shape"][1]
     last["weight"] = list(last["weight"]) + [0.0] * hidden
     last["bias"] = list(last["bias"]) + [float(insertion_bias)]
     last["shape"] = [2, hidden]
-    out = {**copy.deepcopy(d), "obs_size": cols + extra, "action_size": 2,
+    out = {**copy.deepcopy(d), "obs_size": layers[0]["shape"][1], "action_size": 2,
            "obs_layout": "guidewire-nav/obs/5",
            "action_layout": "guidewire-nav/act/2", "layers": layers,
            "output": {"squash": "tanh", "low": list(d["output"]["low"]) + [-1.0],
@@ -184,14 +189,8 @@ def widen_to_tip_force(d: dict) -> dict:
     if d.get("obs_layout") != "guidewire-nav/obs/5" or d.get("action_size") != 2:
         raise ValueError(f"widen_to_tip_force: need an obs/5 push/pull actor (action size 2), got "
                          f"{d.get('obs_layout')!r} with action size {d.get('action_size')!r}")
-    if d.get("obs_normalization"):
-        raise ValueError("widen_to_tip_force: an actor with observation normalisation is not supported")
-    layers = copy.deepcopy(d["layers"])
-    rows, cols = layers[0]["shape"]
-    w = np.asarray(layers[0]["weight"], dtype=np.float64).reshape(rows, cols)
-    layers[0]["weight"] = np.hstack([w, np.zeros((rows, 1))]).reshape(-1).tolist()
-    layers[0]["shape"] = [rows, cols + 1]
-    out = {**copy.deepcopy(d), "obs_size": cols + 1, "obs_layout": "guidewire-nav/obs/8", "layers": layers}
+    layers = widened_layers(d, 1, "widen_to_tip_force")
+    out = {**copy.deepcopy(d), "obs_size": layers[0]["shape"][1], "obs_layout": "guidewire-nav/obs/8", "layers": layers}
     out["source"] = {**d.get("source", {}), "widened_from": d.get("obs_layout")}
     return out
 

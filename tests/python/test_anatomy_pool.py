@@ -96,3 +96,32 @@ def test_evaluate_takes_a_pool_as_a_row(tmp_path):
     rows = json.loads(plan.stdout)["rows"]
     assert [r["name"] for r in rows] == ["sensitivity: var1", f"pool {out / 'index.json'}"]
     assert rows[1]["episodes"] == 5 * len(index)
+
+
+def test_a_spec_the_generator_refuses_is_drawn_again_and_kept_on_a_rerun(tmp_path):
+    # A stand-in for anatomy-gen that refuses every first draw, as the real one refuses intersecting branches.
+    gen = tmp_path / "fake-anatomy-gen"
+    gen.write_text("""#!/usr/bin/env python3
+import json, pathlib, sys
+spec, out = pathlib.Path(sys.argv[sys.argv.index("--spec") + 1]), pathlib.Path(sys.argv[sys.argv.index("--out") + 1])
+s = json.loads(spec.read_text())
+if "Redraw" not in s["description"]:
+    sys.exit(f"error: {spec}: branches 'B2' and 'F5' intersect")
+(out / (s["name"] + ".stl")).write_text("solid x\\nendsolid x\\n")
+(out / (s["name"] + ".truth.json")).write_text("{}")
+print(json.dumps({"name": s["name"]}))
+""")
+    gen.chmod(0o755)
+    out = tmp_path / "pool"
+    args = ["--out", str(out), "--count", "2", "--seed", "5", "--anatomy-gen", str(gen)]
+    assert anatomy_pool.main(args) == 0
+    index = json.loads((out / "index.json").read_text())["anatomies"]
+    assert [e["name"] for e in index] == ["coronary_5_0000", "coronary_5_0001"]
+    redrawn = [json.loads((out.parent / e["spec"]).read_text()) for e in index]
+    assert all("Redraw 1" in s["description"] for s in redrawn)
+    first = anatomy_pool.sample_spec(5, 0, ["coronary"])[1]
+    assert redrawn[0]["branches"] != first["branches"]  # drawn from (5, 0, 1), not (5, 0)
+    assert redrawn[0] == anatomy_pool.sample_spec(5, 0, ["coronary"], 1)[1]
+    # A rerun keeps the meshed anatomies with their redrawn specs (the first draw is not written over them).
+    assert anatomy_pool.main(args) == 0
+    assert [json.loads((out.parent / e["spec"]).read_text()) for e in index] == redrawn

@@ -15,7 +15,9 @@ written are kept) and the same seed gives the same specs. What is drawn (docs/an
   three of ten;
 - aortic arches of Types I-III (anatomies/segmentation/make_arch_specs.py's construction with a random height and
   great-vessel angles), entered from the descending aorta.
-A drawn tree whose branches come closer than their radii plus 0.6 mm (away from their junction) is drawn again.
+A drawn tree whose branches come closer than their radii plus 0.6 mm (away from their junction) is drawn again,
+and so is one that anatomy-gen refuses (redraw k of sample i from (S, i, k), named as before; --specs-only writes
+first draws, unchecked). An anatomy already meshed keeps its spec.
 """
 
 import argparse
@@ -35,6 +37,7 @@ from guidewire_nav.heart_walk import STEP_MM, on_surface, rotate, spec_branch, s
 REPO = Path(__file__).resolve().parents[2]
 KINDS = ("coronary", "arch")
 MAX_TARGETS = 8
+MAX_REDRAWS = 5  # draws of one sample after anatomy-gen refused its spec
 
 
 def child_branch(branches, parent, at, angle_deg, length_mm, curvature, r0, r1, axes, name):
@@ -166,12 +169,16 @@ def sample_arch(rng, name):
     return spec
 
 
-def sample_spec(seed, index, kinds):
-    """Sample `index` of pool `seed`: its kind and spec."""
-    rng = np.random.default_rng([seed, index])
+def sample_spec(seed, index, kinds, redraw=0):
+    """Sample `index` of pool `seed`: its kind and spec. Redraw k > 0 (after the generator refused the spec) is
+    drawn from (seed, index, k) instead, under the same name."""
+    rng = np.random.default_rng([seed, index] if redraw == 0 else [seed, index, redraw])
     kind = kinds[int(rng.integers(len(kinds)))]
     name = f"{kind}_{seed}_{index:04d}"
-    return kind, (sample_arch if kind == "arch" else sample_coronary)(rng, name)
+    spec = (sample_arch if kind == "arch" else sample_coronary)(rng, name)
+    if redraw:
+        spec["description"] += f" Redraw {redraw}: anatomy-gen refused the earlier draws."
+    return kind, spec
 
 
 def write_index(out, entries):
@@ -213,16 +220,33 @@ def parse_args(argv=None):
     return args
 
 
+def write_spec(out, kind, spec):
+    """OUT/<kind>/<name>/<name>.spec.json, unless that anatomy is already meshed (its spec may be a redraw)."""
+    folder = out / kind / spec["name"]
+    folder.mkdir(parents=True, exist_ok=True)
+    if not ((folder / f"{spec['name']}.stl").exists() and (folder / f"{spec['name']}.truth.json").exists()):
+        (folder / f"{spec['name']}.spec.json").write_text(json.dumps(spec, indent=1) + "\n")
+    return kind, spec["name"]
+
+
+def mesh_or_redraw(gen, out, seed, index, kinds, entry):
+    """Meshes sample `index`; when anatomy-gen refuses its spec (e.g. two branches that intersect, which the
+    sampler's own clearance test did not see), draws it again (up to MAX_REDRAWS times) and meshes that."""
+    result = mesh_one(gen, out / entry[0] / entry[1], entry[1])
+    for redraw in range(1, MAX_REDRAWS + 1):
+        if "error" not in result:
+            break
+        kind, spec = sample_spec(seed, index, kinds, redraw)
+        entry = write_spec(out, kind, spec)
+        result = mesh_one(gen, out / kind / spec["name"], spec["name"])
+        result["redraw"] = redraw
+    return result
+
+
 def main(argv=None):
     args = parse_args(argv)
     out = Path(args.out)
-    entries = []
-    for i in range(args.count):
-        kind, spec = sample_spec(args.seed, i, args.kinds)
-        folder = out / kind / spec["name"]
-        folder.mkdir(parents=True, exist_ok=True)
-        (folder / f"{spec['name']}.spec.json").write_text(json.dumps(spec, indent=1) + "\n")
-        entries.append((kind, spec["name"]))
+    entries = [write_spec(out, *sample_spec(args.seed, i, args.kinds)) for i in range(args.count)]
     write_index(out, entries)
     if args.specs_only:
         print(json.dumps({"out": str(out), "specs": len(entries)}))
@@ -231,7 +255,8 @@ def main(argv=None):
     if not Path(gen).exists():
         sys.exit(f"error: --anatomy-gen: {gen}: not found (build the project first)")
     with ThreadPoolExecutor(args.jobs) as pool:
-        results = list(pool.map(lambda e: mesh_one(gen, out / e[0] / e[1], e[1]), entries))
+        results = list(pool.map(lambda i: mesh_or_redraw(gen, out, args.seed, i, args.kinds, entries[i]),
+                                range(len(entries))))
     failed = [r for r in results if "error" in r]
     for r in results:
         print(json.dumps(r))

@@ -1,5 +1,5 @@
 // bench-mechanics [--anatomy STEM] [--push MM_PER_S] [--length MM] [--params F.json] [--friction-torque]
-//                 [--heart-rate BPM [--motion FILE]]: mechanics speed.
+//                 [--heart-rate BPM [--motion FILE]] [--contact-accuracy K]: mechanics speed.
 // Prints one JSON object: a full insertion into a committed anatomy (coronary by default) with the
 // per-stage breakdown and a hash of its trajectory (bit-identity checks of optimisations), and the cost
 // per integration sub-step for 50, 100, 200 and 400 nodes. With a heart rate, the same insertion again
@@ -9,7 +9,11 @@
 // JSON, engine/scene/wall_motion.hpp), or by default the generator's coronary field (12% radial
 // contraction, 10% axial shortening, 2.5 deg/cm twist about -z through the origin: the field of
 // anatomies/test/coronary_deformed) held still at the inlet (the guide catheter's frame).
+// With --contact-accuracy K, the static insertion once more, untimed, with every K-th sub-step's contact
+// problem also solved to convergence (on a copy: the same trajectory, checked by its hash): how far the
+// forces of the capped projected Gauss-Seidel solve are from the converged ones, under "contact_accuracy".
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -40,6 +44,7 @@ struct BenchArgs {
   bool friction_torque = false;
   double heart_rate = 0;
   std::string motion_path;
+  int contact_accuracy = 0;
 };
 
 // The flags, into `a` (defaults as above).
@@ -53,6 +58,10 @@ void add_bench_options(CLI::App& app, BenchArgs& a) {
   app.add_flag("--friction-torque", a.friction_torque, "friction at the wire surface (turns the wire; default off)");
   app.add_option("--heart-rate", a.heart_rate, "also run the insertion in the beating vessel at this rate [bpm]");
   app.add_option("--motion", a.motion_path, "cardiac motion JSON (default: the generator's coronary field)");
+  app.add_option("--contact-accuracy", a.contact_accuracy,
+                 "also run the static insertion untimed, every K-th sub-step's contact problem solved to convergence "
+                 "as well: the capped solve's force errors (0 = off)")
+      ->check(CLI::NonNegativeNumber);
 }
 
 // The insertion point and direction of the generated anatomy STEM (its STEM.truth.json); throws naming the file.
@@ -95,6 +104,9 @@ nlohmann::json insertion_json(const gw::InsertionBenchmark& b) {
                         {"mean_max_pgs_sweeps", b.mean_pgs_sweeps},
                         {"max_penetration_mm", b.max_penetration_mm},
                         {"split_substeps", b.split_substeps},
+                        {"contact_solves", b.contact_solves},
+                        {"share_contact_solves_at_sweep_cap",
+                         b.contact_solves > 0 ? static_cast<double>(b.capped_contact_solves) / b.contact_solves : 0.0},
                         {"us_per_substep_by_stage", stages},
                         {"tip", {b.tip.x(), b.tip.y(), b.tip.z()}},
                         {"trajectory_hash", hash}};
@@ -150,6 +162,40 @@ void run_static_and_beating(const BenchArgs& a, const gw::WireModel& model, cons
                     {"control_steps_per_cpu_s_beating_over_static", b.cpu_seconds / bb.cpu_seconds}};
 }
 
+// Median, 90th and 99th percentile and largest of `v` (zeros when empty).
+nlohmann::json quantiles(std::vector<double> v) {
+  if (v.empty()) return {{"median", 0.0}, {"p90", 0.0}, {"p99", 0.0}, {"max", 0.0}};
+  std::sort(v.begin(), v.end());
+  auto at = [&](double q) { return v[std::min(v.size() - 1, static_cast<std::size_t>(q * v.size()))]; };
+  return {{"median", at(0.5)}, {"p90", at(0.9)}, {"p99", at(0.99)}, {"max", v.back()}};
+}
+
+// The static insertion again with every k-th sub-step's contact solve checked against a converged one:
+// the error quantiles (relative, engine/contact/contact_force_error.hpp) and whether the trajectory is the
+// timed run's (`timed_hash`).
+nlohmann::json contact_accuracy_json(const BenchArgs& a, gw::WireModel model, const gw::VesselScene& scene,
+                                     const Eigen::Vector3d& inlet, const Eigen::Vector3d& dir,
+                                     std::uint64_t timed_hash) {
+  model.reference_contact_solve_every = a.contact_accuracy;
+  const gw::InsertionBenchmark b = gw::run_insertion_benchmark(model, scene, inlet, dir, a.roll, a.push, a.length);
+  std::vector<double> resultant, peak_node, distribution;
+  int converged = 0;
+  for (const gw::ContactForceError& e : b.contact_checks) {
+    resultant.push_back(e.resultant);
+    peak_node.push_back(e.peak_node);
+    distribution.push_back(e.distribution);
+    converged += e.reference_converged ? 1 : 0;
+  }
+  return {{"every_substeps", a.contact_accuracy},
+          {"checks", b.contact_checks.size()},
+          {"reference_sweep_cap", gw::kReferenceContactSweeps},
+          {"reference_converged", converged},
+          {"same_trajectory_as_timed_run", b.trajectory_hash == timed_hash},
+          {"resultant_error", quantiles(resultant)},
+          {"peak_node_force_error", quantiles(peak_node)},
+          {"distribution_error", quantiles(distribution)}};
+}
+
 // The cost per integration sub-step in free space for 50, 100, 200 and 400 nodes.
 nlohmann::json scaling_json(int scaling_substeps) {
   nlohmann::json scaling = nlohmann::json::array();
@@ -177,6 +223,10 @@ int main(int argc, char** argv) {
       out["insertion"] = insertion_json(gw::run_insertion_benchmark(model, scene, inlet, dir, a.roll, a.push, a.length));
     else
       run_static_and_beating(a, model, scene, inlet, dir, out);
+    if (a.contact_accuracy > 0) {
+      const std::string hash = out["insertion"]["trajectory_hash"];
+      out["contact_accuracy"] = contact_accuracy_json(a, model, scene, inlet, dir, std::stoull(hash, nullptr, 16));
+    }
     const nlohmann::json scaling = scaling_json(a.scaling_substeps);
     out["anatomy"] = stem;
     out["mesh_triangles"] = scene.mesh.F.rows();

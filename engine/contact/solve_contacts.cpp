@@ -263,7 +263,7 @@ void gauss_seidel_sweeps(const std::vector<ContactPoint>& contacts, double mu, i
     }
     res.iterations = it + 1;
     res.residual = change / largest;
-    if (res.residual < 1e-6) break;
+    if (res.residual < kContactSweepTolerance) break;
   }
 }
 

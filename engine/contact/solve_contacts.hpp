@@ -44,6 +44,10 @@ struct ContactSolveResult {
   double residual = 0;  // largest impulse change in the last sweep, relative to the largest impulse
 };
 
+// The sweeps stop when the last one changed no impulse by more than this, relative to the largest impulse;
+// a solve whose residual is still above it stopped at its sweep cap.
+constexpr double kContactSweepTolerance = 1e-6;
+
 // Step 1: the blocks of A^-1 between the contact nodes (independent of the contact directions).
 void prepare_contact_compliance(const BlockTridiagonal& a, const BlockTridiagonalFactor& f, int first_free,
                                 const std::vector<ContactPoint>& contacts, ContactWorkspace& ws);

@@ -21,6 +21,8 @@ struct InsertionBenchmark {
   double mean_pgs_sweeps = 0;         // per control step: the most sweeps any of its sub-steps used
   double max_penetration_mm = 0;
   int split_substeps = 0;  // sub-steps halved because the wire moved too fast (adaptive step)
+  int contact_solves = 0, capped_contact_solves = 0;  // StepReport's, summed over the run
+  std::vector<ContactForceError> contact_checks;       // model.reference_contact_solve_every > 0: StepReport's
   double inserted_mm = 0;
   int free_nodes_end = 0;
   bool ok = true;

@@ -23,6 +23,7 @@ struct StepWorkspace {
   std::vector<ContactPoint> contacts;
   std::vector<Eigen::Vector3d> v_contact;
   ContactWorkspace cws;
+  ContactWorkspace reference;  // model.reference_contact_solve_every: the copy solved to convergence
 };
 
 double seconds_since(std::chrono::steady_clock::time_point& t) {
@@ -72,6 +73,27 @@ bool free_motion(const WireModel& model, const WireState& state, double push, do
   return true;
 }
 
+// Diagnostic (model.reference_contact_solve_every): on every k-th sub-step, the contact problem as the capped
+// solve starts it, kept for check_contact_solve; whether it was kept. Out of line, like check_contact_solve, so
+// that the step's own code compiles as it does without them (an inlined copy changed the compiler's
+// floating-point contractions elsewhere in the stage, and with them the trajectory's last bits).
+[[gnu::noinline]] bool keep_contact_problem_if_due(const WireModel& model, const WireState& state, StepWorkspace& ws) {
+  const int every = model.reference_contact_solve_every;
+  if (every <= 0 || state.steps % every != 0) return false;
+  ws.reference = ws.cws;
+  return true;
+}
+
+// Diagnostic: ws.reference solved to convergence; how far the capped solve's forces (ws.cws) are from it
+// goes into rep.contact_checks.
+[[gnu::noinline]] void check_contact_solve(const WireModel& model, double dt, StepWorkspace& ws, StepReport& rep) {
+  const ContactSolveResult ref = solve_contact_impulses(ws.contacts, dt, model.params.friction, kReferenceContactSweeps,
+                                                        true, ws.reference);
+  ContactForceError e = contact_force_error(ws.contacts, ws.cws.impulse, ws.reference.impulse, model.nodes);
+  e.reference_converged = ref.residual < kContactSweepTolerance;
+  rep.contact_checks.push_back(e);
+}
+
 // Stage: contacts at the start of the step, linearised there (Eq. 2), with the free-motion velocities;
 // their impulses (warm-started from the previous sub-step's), a second solve where a contact's normal at
 // mid-motion turned, the velocity change added to ws.dv and the contact forces into the state. Returns
@@ -108,7 +130,9 @@ std::string constrain_contacts(const WireModel& model, const VesselScene& scene,
       state.contact_impulse.assign(contact_point_count(model), 0.0);
     if (ws.cws.impulse.size() < 3 * m) ws.cws.impulse.conservativeResize(3 * m);
     for (int c = 0; c < m; ++c) ws.cws.impulse[3 * c] = state.contact_impulse[ws.contacts[c].point];
+    const bool check = keep_contact_problem_if_due(model, state, ws);
     ContactSolveResult cr = solve_contact_impulses(ws.contacts, dt, mu, iters, true, ws.cws);
+    if (check) check_contact_solve(model, dt, ws, rep);
     contact_velocity_change(ws.sys.a, ws.factor, ws.contacts, ws.cws);
     // Second pass with each contact re-linearised at the middle of its constrained motion: the wall
     // normal there makes g(x1) ~ g(x0) + n_mid . (x1 - x0) second-order accurate, so a wire pressed on
@@ -142,6 +166,8 @@ std::string constrain_contacts(const WireModel& model, const VesselScene& scene,
     std::fill(state.contact_impulse.begin(), state.contact_impulse.end(), 0.0);
     for (int c = 0; c < m; ++c) state.contact_impulse[ws.contacts[c].point] = ws.cws.impulse[3 * c];
     rep.contact_iterations = cr.iterations;
+    rep.contact_solves = 1;
+    rep.capped_contact_solves = cr.residual >= kContactSweepTolerance ? 1 : 0;  // the last solve of the two
     for (std::size_t c = 0; c < ws.contacts.size(); ++c) {
       const ContactPoint& cp = ws.contacts[c];
       const Eigen::Vector3d f = (cp.n * ws.cws.impulse[3 * c] + cp.t1 * ws.cws.impulse[3 * c + 1] +
@@ -275,6 +301,9 @@ void accumulate(StepReport& total, const StepReport& rep) {
   total.max_penetration_mm = std::max(total.max_penetration_mm, rep.max_penetration_mm);
   total.free_nodes = rep.free_nodes;
   total.contact_iterations = std::max(total.contact_iterations, rep.contact_iterations);
+  total.contact_solves += rep.contact_solves;
+  total.capped_contact_solves += rep.capped_contact_solves;
+  total.contact_checks.insert(total.contact_checks.end(), rep.contact_checks.begin(), rep.contact_checks.end());
   total.energy = rep.energy;
   total.split_substeps += rep.split_substeps;
   total.timings.detect_s += rep.timings.detect_s;

@@ -6,7 +6,9 @@
 // free motion), detect (wall proximity at the predicted positions), constraints (contact impulses by
 // projected Gauss-Seidel on W = H A^-1 H^T, Eq. 2), then integrate and check for divergence.
 #include <string>
+#include <vector>
 
+#include "engine/contact/contact_force_error.hpp"
 #include "engine/scene/vessel_scene.hpp"
 #include "engine/wire/wire_state.hpp"
 
@@ -21,6 +23,9 @@ struct StepTimings {
   double detect_s = 0, assemble_s = 0, solve_s = 0, constraints_s = 0;
 };
 
+// The sweep cap of the reference contact solve (WireModel::reference_contact_solve_every).
+constexpr int kReferenceContactSweeps = 20000;
+
 struct StepReport {
   bool ok = true;
   std::string problem;            // why ok == false: NaN, exploding energy, node outside the wall, ...
@@ -28,6 +33,9 @@ struct StepReport {
   double max_penetration_mm = 0;  // deepest wire-surface penetration of the wall over the sub-steps
   int free_nodes = 0;             // nodes out of the introducer (unknowns of the solve)
   int contact_iterations = 0;     // projected Gauss-Seidel sweeps used (most in a sub-step)
+  int contact_solves = 0;         // sub-steps (halved ones' attempts included) that solved for contact impulses
+  int capped_contact_solves = 0;  // of those, the ones whose solve stopped at its sweep cap unconverged
+  std::vector<ContactForceError> contact_checks;  // model.reference_contact_solve_every > 0: one per check
   double energy = 0;              // elastic + kinetic energy [mN mm = uJ]
   int split_substeps = 0;         // sub-steps halved because the wire moved too fast for one (see step.cpp)
   StepTimings timings;            // summed over the sub-steps

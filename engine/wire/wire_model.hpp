@@ -26,6 +26,10 @@ struct WireModel {
   std::vector<Eigen::Vector3d> rest_phi;   // per element: rest rotation vector from frame e to e+1 (local)
   std::vector<Vec6> stiffness;             // per element: (EA, kGA, kGA, GJ, EI, EI) [mN, mN mm^2]
   double energy_limit = 0;                 // elastic + kinetic energy above this = exploding [mN mm]
+  // Diagnostic (bench-mechanics --contact-accuracy): every k-th sub-step (0 = never) the contact problem is
+  // also solved to convergence on a copy, and how far the capped solve's forces are from it goes into the
+  // StepReport (contact_checks). The trajectory is the same bit for bit, only slower.
+  int reference_contact_solve_every = 0;
   int elements() const { return nodes - 1; }
 };
 

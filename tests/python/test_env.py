@@ -6,7 +6,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from guidewire_nav.env import GuidewireEnv, ServerError, find_server_binary, make_env, start_server
+from guidewire_nav.env import GuidewireEnv, RestartingEnv, ServerError, find_server_binary, make_env, start_server
 
 
 @pytest.fixture(scope="module")
@@ -337,3 +337,22 @@ def test_heart_rate_makes_the_anatomy_beat_and_is_reported(server_bin):
                              capture_output=True, text=True, timeout=60)
     assert refused.returncode == 1
     assert "--motion" in refused.stderr
+
+
+def test_a_step_the_server_cuts_off_ends_the_episode_and_training_goes_on(server_bin, capsys):
+    # --step-cutoff 1e-9: every env step "runs away" (as a wire jammed in a 0.3 mm vessel crawls past the 10 s
+    # default), and the server answers with an error. gw-train's RestartingEnv ends that episode as truncated and
+    # starts the next one on the same server, instead of letting the error kill the training run.
+    cut = RestartingEnv(lambda: GuidewireEnv(anatomies="t1_straight_y", server_args=["--step-cutoff", "1e-9"]))
+    try:
+        obs, _ = cut.reset(seed=3)
+        for _ in range(2):
+            o, reward, terminated, truncated, info = cut.step(np.array([0.1]))
+            assert truncated and not terminated and reward == 0.0
+            assert "time limit" in info["server_error"] and info["is_success"] is False
+            assert np.array_equal(o, obs)
+            obs, _ = cut.reset()  # the same server, a new episode
+        assert cut.step_errors == 2 and cut.restarts == 0
+        assert "episode ended by the server" in capsys.readouterr().err
+    finally:
+        cut.close()

@@ -261,13 +261,16 @@ class RestartingEnv(gym.Env):
     died): a new local server (``RestartingEnv(lambda: GuidewireEnv(...))``, what gw-train does) or the
     restarted server of a Ray actor (ray_servers.ServerEnv). The episode the death cut short ends as
     truncated with ``info["server_restarted"]``; a reset that finds the server gone is retried once on
-    the new one; the episode seeds go on from the same generator, so the run stays seeded."""
+    the new one; the episode seeds go on from the same generator, so the run stays seeded. A step the server
+    answers with an error (a step cut off by its --step-cutoff wall-time limit, e.g. a wire jammed in a narrow
+    vessel where the simulation crawls) ends the episode as truncated with ``info["server_error"]``; the same
+    server starts the next one."""
 
     metadata = {"render_modes": []}
 
     def __init__(self, connect: Callable[[], GuidewireEnv], name: str = "guidewire-server"):
         super().__init__()
-        self.connect, self.name, self.restarts = connect, name, 0
+        self.connect, self.name, self.restarts, self.step_errors = connect, name, 0, 0
         self.env = connect()
         self.observation_space, self.action_space = self.env.observation_space, self.env.action_space
         self.spec_reply = self.env.spec_reply
@@ -303,6 +306,11 @@ class RestartingEnv(gym.Env):
             self._reconnect()  # the episode is lost with its server: ended as truncated, reset next
             return self._last_obs, 0.0, False, True, {"success": False, "is_success": False,
                                                       "server_restarted": True}
+        except ServerError as e:  # the server refused the step or cut it off (--step-cutoff): the episode is over
+            self.step_errors += 1
+            print(f"[env] {self.name}: episode ended by the server: {e} (step error {self.step_errors})",
+                  file=sys.stderr)
+            return self._last_obs, 0.0, False, True, {"success": False, "is_success": False, "server_error": str(e)}
         self._last_obs = obs
         return obs, reward, terminated, truncated, info
 

@@ -87,6 +87,7 @@ void report_anatomy(const NavigateArgs& a, const gw::NavigationAnatomy& nav, con
   for (const std::string& r : nav.repairs) std::cerr << "repaired: " << a.anatomy_path << ": " << r << "\n";
   for (const std::string& w : nav.mesh_warnings) std::cerr << "warning: " << a.anatomy_path << ": " << w << "\n";
   if (!nav.inlet_warning.empty()) std::cerr << "warning: " << a.anatomy_path << ": " << nav.inlet_warning << "\n";
+  if (!nav.inlet_note.empty()) std::cerr << "note: " << a.anatomy_path << ": " << nav.inlet_note << "\n";
   // The default wire is a 0.014" coronary wire made for vessels of about 0.8-2 mm radius; in an
   // aorta (radius 10-15 mm) its tip cannot span the lumen to aim at a branch.
   const double inlet_radius = nav.anatomy.graph.inlet.radius;
@@ -114,6 +115,7 @@ nlohmann::json navigation_summary(const NavigateArgs& a, const gw::NavigationAna
   const Eigen::Vector3d& inlet = nav.anatomy.graph.inlet.position;
   summary["inlet"] = {{"source", nav.inlet_source}, {"position", {inlet.x(), inlet.y(), inlet.z()}}};
   if (!nav.inlet_warning.empty()) summary["inlet"]["warning"] = nav.inlet_warning;
+  if (!nav.inlet_note.empty()) summary["inlet"]["note"] = nav.inlet_note;
   summary["centerline"] = {{"source", nav.centerline_source},
                            {"seconds", nav.centerline_seconds},
                            {"targets", nav.anatomy.graph.targets.size()},

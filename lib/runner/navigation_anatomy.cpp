@@ -6,9 +6,11 @@
 #include <memory>
 
 #include "centerline/centerline_cache.hpp"
+#include "base/graph/descending_aorta_inlet.hpp"
 #include "base/graph/inlet_ambiguity.hpp"
 #include "centerline/intake_surface.hpp"
 #include "engine/scene/vessel_scene.hpp"
+#include "task/task_config.hpp"
 
 namespace gw {
 
@@ -78,9 +80,18 @@ NavigationAnatomy load_navigation_anatomy(const std::string& mesh_path, const Na
     cache.enabled = options.use_cache;
     bool hit = false;
     graph = cached_extract_centerline(surface, extract, cache, nullptr, &hit);
+    if (out.inlet_source == "widest end") {
+      if (const auto aorta = descending_aorta_inlet(graph, TaskConfig{}.wide_vessel_radius_mm)) {
+        extract.inlet = aorta->position;  // an aortic arch: entered from the groin, at the descending aorta
+        graph = cached_extract_centerline(surface, extract, cache, nullptr, &hit);
+        out.inlet_source = "descending aorta (an aortic arch: femoral access)";
+        (aorta->doubtful ? out.inlet_warning : out.inlet_note) = aorta->note;
+      } else {
+        out.inlet_warning = inlet_ambiguity(graph);
+      }
+    }
     out.centerline_from_cache = hit;
     out.centerline_source = hit ? "cache" : "extracted";
-    if (out.inlet_source == "widest end") out.inlet_warning = inlet_ambiguity(graph);
   }
   out.centerline_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (graph.targets.empty())

@@ -30,13 +30,18 @@ struct NavigationAnatomy {
   double centerline_seconds = 0.0;        // extraction (or cache read) time
   std::string centerline_source;          // "extracted" | "cache" | the JSON path
   std::string inlet_source;               // "--inlet" | the sidecar truth JSON | "widest end" | the centerline JSON
-  std::string inlet_warning;              // non-empty when the widest-end guess is doubtful (inlet_ambiguity)
+                                          // | "descending aorta (an aortic arch: femoral access)"
+  std::string inlet_warning;              // non-empty when the inlet is a doubtful guess (inlet_ambiguity,
+                                          // descending_aorta_inlet's doubtful case)
+  std::string inlet_note;                 // how the descending aorta was found, when it was and is no guess
 };
 
 // Inlet: options.inlet if set; else the inlet of a ground-truth sidecar STEM.truth.json next to
 // the mesh (the committed anatomies have one; it is the insertion point `evaluate` uses, so both
 // tools extract and number the same graph); else the widest vessel end, with inlet_warning set
-// when another end is nearly as wide.
+// when another end is nearly as wide; but on an aortic arch (base/graph/descending_aorta_inlet.hpp) the
+// descending aorta, the narrower of the aorta's two ends (femoral access), said in inlet_note (inlet_warning
+// when the two ends are nearly as wide).
 // Throws MeshError / std::runtime_error "<file>: <problem>" for unreadable or invalid meshes and
 // for a surface the extraction cannot handle; std::invalid_argument when the graph has no target.
 NavigationAnatomy load_navigation_anatomy(const std::string& mesh_path, const NavigationAnatomyOptions& options = {});

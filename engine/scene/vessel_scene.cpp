@@ -8,6 +8,7 @@
 #include <fcl/narrowphase/collision_object.h>
 #include <fcl/narrowphase/distance.h>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -16,10 +17,35 @@
 
 namespace gw {
 
+// Built on first use (scene_bvh): only the moving wall's queries and the exact slow path need it, and it is
+// about half of a scene's memory (a training server holds a hundred scenes).
 struct VesselSceneBvh {
+  std::once_flag built;
   std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> model;
   std::unique_ptr<fcl::CollisionObjectd> object;
 };
+
+namespace {
+
+// The scene's FCL BVH, built from its mesh the first time it is asked for (thread-safe).
+const fcl::CollisionObjectd* scene_bvh(const VesselScene& scene) {
+  VesselSceneBvh& b = *scene.bvh;
+  std::call_once(b.built, [&] {
+    const TriangleMesh& mesh = scene.mesh;
+    std::vector<fcl::Vector3d> verts(mesh.V.rows());
+    std::vector<fcl::Triangle> tris(mesh.F.rows());
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) verts[i] = mesh.V.row(i).transpose();
+    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) tris[f] = fcl::Triangle(mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2));
+    b.model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+    b.model->beginModel(static_cast<int>(tris.size()), static_cast<int>(verts.size()));
+    b.model->addSubModel(verts, tris);
+    b.model->endModel();
+    b.object = std::make_unique<fcl::CollisionObjectd>(b.model, fcl::Transform3d::Identity());
+  });
+  return b.object.get();
+}
+
+}  // namespace
 
 VesselScene make_vessel_scene(const TriangleMesh& mesh) {
   const int nv = static_cast<int>(mesh.V.rows());
@@ -34,9 +60,6 @@ VesselScene make_vessel_scene(const TriangleMesh& mesh) {
   s.face_centres.resize(nf, 3);
   s.face_radii.resize(nf);
   double volume = 0;
-  std::vector<fcl::Vector3d> verts(nv);
-  std::vector<fcl::Triangle> tris(nf);
-  for (int i = 0; i < nv; ++i) verts[i] = mesh.V.row(i).transpose();
   for (int f = 0; f < nf; ++f) {
     const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)), c = mesh.V.row(mesh.F(f, 2));
     const Eigen::Vector3d n = (b - a).cross(c - a);
@@ -55,7 +78,6 @@ VesselScene make_vessel_scene(const TriangleMesh& mesh) {
     corners << a, b, c;
     s.face_corners.push_back(corners);
     volume += a.dot(b.cross(c)) / 6.0;
-    tris[f] = fcl::Triangle(mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2));
   }
   // Angle-weighted vertex normals (Thurmer & Wuthrich 1998).
   s.vertex_normals = Eigen::MatrixX3d::Zero(nv, 3);
@@ -76,13 +98,7 @@ VesselScene make_vessel_scene(const TriangleMesh& mesh) {
   if (!(volume > 0))
     throw std::runtime_error("make_vessel_scene: the vessel mesh has signed volume " + std::to_string(volume) +
                              " <= 0 (not closed or oriented inwards); the lumen must be the inside");
-  auto bvh = std::make_shared<VesselSceneBvh>();
-  bvh->model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
-  bvh->model->beginModel(nf, nv);
-  bvh->model->addSubModel(verts, tris);
-  bvh->model->endModel();
-  bvh->object = std::make_unique<fcl::CollisionObjectd>(bvh->model, fcl::Transform3d::Identity());
-  s.bvh = bvh;
+  s.bvh = std::make_shared<VesselSceneBvh>();  // built on first use
   s.grid = std::make_shared<const TriangleGrid>(make_triangle_grid(mesh));
   return s;
 }
@@ -106,7 +122,7 @@ void triangles_within(const VesselScene& scene, const Eigen::Vector3d& p, double
   fcl::CollisionObjectd obj(sphere, tf);
   fcl::CollisionRequestd req(static_cast<std::size_t>(scene.mesh.F.rows()), false);
   fcl::CollisionResultd res;
-  fcl::collide(scene.bvh->object.get(), &obj, req, res);
+  fcl::collide(scene_bvh(scene), &obj, req, res);
   for (std::size_t i = 0; i < res.numContacts(); ++i) out.push_back(res.getContact(i).b1);
 }
 
@@ -118,7 +134,7 @@ double nearest_triangle(const VesselScene& scene, const Eigen::Vector3d& p, int&
   fcl::CollisionObjectd obj(sphere, tf);
   fcl::DistanceRequestd req(true);
   fcl::DistanceResultd res;
-  fcl::distance(scene.bvh->object.get(), &obj, req, res);
+  fcl::distance(scene_bvh(scene), &obj, req, res);
   triangle = res.b1;
   return std::max(0.0, res.min_distance);
 }

@@ -28,13 +28,14 @@ struct VesselScene {
   // distance to the face (wall_distance_among); n = 0 (no bound) for a face too thin for its computed
   // normal to be trusted to 1e-10 (sine of its widest angle below 1e-4).
   std::vector<Eigen::Vector4d> face_planes;
-  std::shared_ptr<const VesselSceneBvh> bvh;
+  std::shared_ptr<VesselSceneBvh> bvh;         // FCL's, built on first use (copies of the scene share it)
   std::shared_ptr<const TriangleGrid> grid;   // range queries of the per-point candidate lists
   std::shared_ptr<const WallMotion> motion;   // nullptr: a static wall (attach_wall_motion sets it)
 };
 
-// Builds the BVH. Throws std::runtime_error for an empty mesh, non-finite vertices, bad indices or a
-// non-positive signed volume (inward-facing normals would turn "inside the vessel" into "outside").
+// Builds the scene (its FCL BVH on first use). Throws std::runtime_error for an empty mesh, non-finite vertices,
+// bad indices or a non-positive signed volume (inward-facing normals would turn "inside the vessel" into
+// "outside").
 VesselScene make_vessel_scene(const TriangleMesh& mesh);
 
 // Closest wall point to `p`, signed clearance (> 0 inside the lumen) and the direction into the lumen.

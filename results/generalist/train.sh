@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# The generalist controller's training run (issue 64 item 2), step-bounded and resumable across sessions: SAC on the
+# training pool (100 coronary trees drawn by gw-anatomy-pool, seed 1: docs/anatomy_pool.md) with the task
+# training/tasks/generalist.json (act/2: push, pull and rotate; obs/8: obs/5 and the tip's wall force; recovery 3, so
+# an episode goes on after a wrong child and pulling back is learnt; a cost of time and of wall force), started from
+# the shipped push/pull actor (its inputs widened to obs/8 with zero weights). Two gradient steps per four env steps
+# (docs/training.md "Where a training step's time goes": as good per wall minute, 2.5 times the env steps; the
+# networks stay 3x256, the push/pull actor's). No evaluation during training: the
+# checkpoints (every 10,000 steps) are chosen later on the validation pool (seed 900001), never on a test row.
+# Each call runs at most MINUTES of wall time and goes on from the run's last checkpoint:
+#   bash results/generalist/train.sh            # again and again until the 400,000 steps are done
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+OUT=${OUT:-runs/generalist}
+MINUTES=${MINUTES:-65}
+.venv/bin/gw-anatomy-pool --out runs/pool/train --count 100 --seed 1 --jobs 2 > /dev/null
+resume=()
+if [ -f "$OUT/settings.json" ]; then resume=(--resume); fi  # a run already started: go on from its last checkpoint
+.venv/bin/gw-train --anatomies runs/pool/train/index.json --task training/tasks/generalist.json \
+  --init-actor policy/trained/sac_actor_push_pull.json --actor-freeze-steps 5000 --ent-coef auto_0.02 \
+  --train-freq 4 --gradient-steps 2 --total-steps 400000 --envs 2 --eval-episodes 0 --checkpoint-every 10000 \
+  --no-progress --torch-threads 1 \
+  --max-minutes "$MINUTES" --seed 1 --out "$OUT" "${resume[@]}"

@@ -5,7 +5,10 @@
 # an episode goes on after a wrong child and pulling back is learnt; a cost of time and of wall force), started from
 # the shipped push/pull actor (its inputs widened to obs/8 with zero weights). Two gradient steps per four env steps
 # (docs/training.md "Where a training step's time goes": as good per wall minute, 2.5 times the env steps; the
-# networks stay 3x256, the push/pull actor's). No evaluation during training: the
+# networks stay 3x256, the push/pull actor's). An env step that takes more than 1 s of wall time ends its episode
+# (--step-cutoff: a wire jammed in a 0.3 mm vessel simulates up to 55 times slower, docs/physics.md, and held up
+# both workers for minutes; the training data then depend a little on the machine's speed, no figure does).
+# No evaluation during training: the
 # checkpoints (every 10,000 steps) are chosen later on the validation pool (seed 900001), never on a test row.
 # Each call runs at most MINUTES of wall time and goes on from the run's last checkpoint:
 #   bash results/generalist/train.sh            # again and again until the 400,000 steps are done
@@ -19,5 +22,5 @@ if [ -f "$OUT/settings.json" ]; then resume=(--resume); fi  # a run already star
 .venv/bin/gw-train --anatomies runs/pool/train/index.json --task training/tasks/generalist.json \
   --init-actor policy/trained/sac_actor_push_pull.json --actor-freeze-steps 5000 --ent-coef auto_0.02 \
   --train-freq 4 --gradient-steps 2 --total-steps 400000 --envs 2 --eval-episodes 0 --checkpoint-every 10000 \
-  --no-progress --torch-threads 1 \
+  --step-cutoff 1 --no-progress --torch-threads 1 \
   --max-minutes "$MINUTES" --seed 1 --out "$OUT" "${resume[@]}"

@@ -161,6 +161,8 @@ def test_fine_tuning_starts_from_the_given_networks(smoke_run, tmp_path):
     assisted = train.server_args(train.Settings(task='{"recovery_attempts": 3, "recovery_assist": true}'))
     assert assisted[0] == "--task" and json.loads(assisted[1])["recovery_assist"] is True
     assert train.server_args(train.Settings()) == []  # the servers' defaults: the shipped actor's task
+    # a jam-prone pool: a lower step cutoff for the servers (the server's own is 10 s, not repeated)
+    assert train.server_args(train.Settings(step_cutoff=1.0)) == ["--step-cutoff", "1.0"]
 
 
 def test_fine_tuning_from_an_exported_actor_keeps_it_while_the_critics_learn(smoke_run, tmp_path):

@@ -92,6 +92,10 @@ class Settings:
                               "coefficient, replay buffer, step counter) up to --total-steps; the other settings "
                               "must be the run's (settings.json)")
     progress: bool = arg(True, "show a progress bar")
+    step_cutoff: float = arg(10.0, "wall seconds a server may spend on one env step before it ends the episode "
+                                   "(guidewire-server --step-cutoff): a wire jammed in a narrow vessel simulates "
+                                   "slowly (docs/physics.md) and holds up every worker; lower it to keep the learner "
+                                   "fed (the episodes then depend on the machine's speed)")
     servers: str = arg("", "connect to running servers 'host:port,host:port' instead of spawning them")
     ray: bool = arg(False, "simulation servers as Ray actors with these task settings, spread over the Ray "
                            "cluster and restarted when they die (the run goes on); needs the [cluster] extra, "
@@ -182,11 +186,13 @@ def with_actor_layouts(task: dict, actor_path: str) -> dict:
 
 
 def server_args(s: Settings) -> list[str]:
-    """The servers' command line: the task JSON as it is (the server checks it and names a bad key)."""
+    """The servers' command line: the task JSON as it is (the server checks it and names a bad key), and
+    --step-cutoff when it is not the server's own 10 s."""
     task = task_settings(s)
     if s.init_actor:
         task = with_actor_layouts(task, s.init_actor)
-    return ["--task", json.dumps(task, separators=(",", ":"))] if task else []
+    cutoff = ["--step-cutoff", repr(s.step_cutoff)] if s.step_cutoff != 10.0 else []  # 10: the server's own
+    return (["--task", json.dumps(task, separators=(",", ":"))] if task else []) + cutoff
 
 
 def make_env_fn(s: Settings, rank: int, eval_env: bool = False, ray_server=None, seed_offset: int = 0):

@@ -124,6 +124,7 @@ int plan_main(PlanArgs a) {
             << "; peak tip force " << plan.peak_tip_force_N << " N, peak node force " << plan.peak_node_force_N
             << " N; searched " << plan.strict.env_steps + plan.procedure.env_steps << " env steps in "
             << plan.strict.seconds + plan.procedure.seconds << " s (" << last.maneuvers << " maneuvers in the last search)\n";
+  if (plan.kind == gw::PlanKind::kNone) std::cerr << "plan: why: " << plan.why << "\n";
   if (a.print_json) std::cout << doc.dump(1) << "\n";
   return plan.kind == gw::PlanKind::kNone ? 2 : 0;
 }

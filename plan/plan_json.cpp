@@ -16,7 +16,8 @@ nlohmann::json stats_json(const SearchStats& s) {
           {"found", s.found},
           {"nearest_target_mm", s.nearest_target_mm},
           {"best_tip", {s.best_tip.x(), s.best_tip.y(), s.best_tip.z()}},
-          {"seconds", s.seconds}};
+          {"seconds", s.seconds},
+          {"exhausted", s.exhausted}};
 }
 
 }  // namespace
@@ -36,6 +37,7 @@ nlohmann::json plan_to_json(const ProcedurePlan& plan) {
                       {"tip_end", {plan.tip_end.x(), plan.tip_end.y(), plan.tip_end.z()}},
                       {"tip_to_target_mm", plan.tip_to_target_mm},
                       {"actions", actions}};
+  if (plan.kind == PlanKind::kNone) j["why"] = plan.why;
   j["search"]["strict"] = stats_json(plan.strict);
   if (plan.procedure.maneuvers > 0) j["search"]["procedure"] = stats_json(plan.procedure);
   return j;

@@ -1,11 +1,16 @@
 #include "plan/plan_procedure.hpp"
 
+#include "plan/narrowest_passage.hpp"
+
 #include <array>
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <iomanip>
 #include <limits>
+#include <optional>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <utility>
 
@@ -75,6 +80,7 @@ class Search {
       release(e.node);
     }
     stats_.found = static_cast<int>(found_.size());
+    stats_.exhausted = open_.empty() && found_.empty() && !dropped_;
     stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return found_;
   }
@@ -115,6 +121,7 @@ class Search {
       const auto worst = std::prev(open_.end());
       const int n = worst->node;
       open_.erase(worst);
+      dropped_ = true;
       release(n);
     }
   }
@@ -176,6 +183,7 @@ class Search {
   long order_ = 0;
   std::set<std::array<long, 4>> visited_;
   std::vector<int> found_;
+  bool dropped_ = false;  // open entries were dropped past kMaxOpen: an empty open list is then no exhaustion
   SearchStats stats_;
 };
 
@@ -209,6 +217,41 @@ int lowest_force(const std::deque<Node>& nodes, const std::vector<int>& found) {
   return best;
 }
 
+std::string fixed(double v, int digits) {
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(digits) << v;
+  return o.str();
+}
+
+// Why no plan was found, from what the searches did (`procedure` null: only the strict search ran).
+std::string why_none(const SearchStats& strict, const SearchStats* procedure, long budget) {
+  const SearchStats& last = procedure ? *procedure : strict;
+  const long spent = strict.env_steps + (procedure ? procedure->env_steps : 0);
+  const std::string tried = std::to_string(last.maneuvers) + " maneuvers: " + std::to_string(last.ended) +
+                            " ended the episode (stall, wire out), " + std::to_string(last.over_force) +
+                            " over the force budget, " + std::to_string(last.wrong_branch) + " into a wrong branch";
+  if (last.exhausted)
+    return "search exhausted: from every state it reached, every maneuver ended the episode, went over the force "
+           "budget, entered a wrong branch (strict) or led only to visited cells (" + tried + ")";
+  return "budget spent: " + std::to_string(spent) + " of " + std::to_string(budget) +
+         " env steps, ways forward still open; not a proof that the target is out of reach (" + tried + ")";
+}
+
+// The plan "unreachable" because the course narrows below the wire somewhere, or none.
+std::optional<ProcedurePlan> too_narrow(const NavigationTask& task, int anatomy, int target_id, const EpisodeState& root) {
+  const double wire_radius = 0.5 * task.wire.params.diameter_mm;
+  const auto passage = narrowest_passage(task.anatomies[static_cast<std::size_t>(anatomy)].graph, target_id, wire_radius);
+  if (!passage) return std::nullopt;
+  ProcedurePlan plan;
+  plan.tip_end = root.tip;
+  plan.tip_to_target_mm = tip_to_target_mm(root);
+  plan.why = "unreachable: the lumen narrows to " + fixed(passage->radius_mm, 3) + " mm radius over " +
+             fixed(passage->length_mm, 1) + " mm from " + fixed(passage->start_mm, 1) +
+             " mm along the course, below the wire's radius " + fixed(wire_radius, 3) +
+             " mm; the walls are rigid, so no maneuver passes (nothing was searched)";
+  return plan;
+}
+
 }  // namespace
 
 const char* plan_kind_name(PlanKind kind) {
@@ -227,6 +270,7 @@ ProcedurePlan plan_procedure(const NavigationTask& task, int anatomy, int target
   if (!(options.force_limit_N > 0) || options.hold_steps < 1 || options.max_env_steps < 1 || options.successes < 1)
     throw std::invalid_argument("plan_procedure: force limit, hold steps, budget and successes must be positive");
   const EpisodeState root = reset_episode(task, anatomy, target_id, seed);
+  if (auto narrow = too_narrow(task, anatomy, target_id, root)) return *narrow;
   const long strict_budget = options.strict_only ? options.max_env_steps : options.max_env_steps / 2;
   Search strict(task, options, true, strict_budget);
   const std::vector<int> strict_found = strict.run(root);
@@ -238,6 +282,7 @@ ProcedurePlan plan_procedure(const NavigationTask& task, int anatomy, int target
   }
   if (options.strict_only) {
     plan.strict = strict.stats();
+    plan.why = why_none(strict.stats(), nullptr, options.max_env_steps);
     plan.tip_end = strict.stats().best_tip;
     plan.tip_to_target_mm = strict.stats().nearest_target_mm;
     return plan;
@@ -252,6 +297,7 @@ ProcedurePlan plan_procedure(const NavigationTask& task, int anatomy, int target
     const SearchStats& nearer = procedure_nearer ? procedure.stats() : strict.stats();
     plan.tip_end = nearer.best_tip;
     plan.tip_to_target_mm = nearer.nearest_target_mm;
+    plan.why = why_none(strict.stats(), &procedure.stats(), options.max_env_steps);
   }
   plan.strict = strict.stats();
   plan.procedure = procedure.stats();

@@ -16,7 +16,8 @@
 //
 // Inputs: a task made with planning_task_config (act/2; throws std::invalid_argument otherwise), the anatomy
 // and target, the episode seed (the start orientation), options. Output: the plan, or what was tried and where
-// the tip got nearest. Deterministic: the same inputs give the same plan.
+// the tip got nearest, and why none was found: the course narrows below the wire (then nothing is searched), the
+// search ran out of ways forward, or of budget. Deterministic: the same inputs give the same plan.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -51,6 +52,7 @@ struct SearchStats {
   double nearest_target_mm = 0.0;   // the nearest any node's tip got to the target (straight distance)
   Eigen::Vector3d best_tip = Eigen::Vector3d::Zero();
   double seconds = 0.0;             // wall time
+  bool exhausted = false;           // nothing was left open before the budget was spent or the plans were found
 };
 
 struct ProcedurePlan {
@@ -65,6 +67,9 @@ struct ProcedurePlan {
   Eigen::Vector3d tip_end = Eigen::Vector3d::Zero();  // where the tip ended (none found: the nearest node's)
   double tip_to_target_mm = 0.0;    // the tip's straight distance to the target at the end (none found: the nearest)
   SearchStats strict, procedure;    // procedure: left at zero when the strict search found a plan
+  // None found: why, in words. "unreachable: ..." where the course narrows below the wire (narrowest_passage; no
+  // search is run), "search exhausted: ..." where every way forward was tried, "budget spent: ..." otherwise.
+  std::string why;
 };
 
 ProcedurePlan plan_procedure(const NavigationTask& task, int anatomy, int target_id, std::uint64_t seed,

@@ -44,6 +44,7 @@ nlohmann::json target_json(const NavigationTask& task, const PlannedTarget& t) {
                       {"tip_to_target_mm", p.tip_to_target_mm},
                       {"env_steps", p.strict.env_steps + p.procedure.env_steps},
                       {"seconds", p.strict.seconds + p.procedure.seconds}};
+  if (p.kind == PlanKind::kNone && t.error.empty()) j["why"] = p.why;
   if (!t.error.empty()) j["error"] = t.error;
   return j;
 }
@@ -71,17 +72,19 @@ nlohmann::json row_planned(const NavigationTask& planning_task, int seeds, std::
   worker();
   for (std::thread& t : pool) t.join();
   nlohmann::json per_target = nlohmann::json::array();
-  int planned = 0, strict = 0;
+  int planned = 0, strict = 0, unreachable = 0;
   std::vector<double> seconds;
   for (const PlannedTarget* t : todo) {
     planned += t->plan.kind != PlanKind::kNone;
     strict += t->plan.kind == PlanKind::kStrict;
+    unreachable += t->plan.kind == PlanKind::kNone && t->plan.why.rfind("unreachable", 0) == 0;
     seconds.push_back(t->plan.strict.seconds + t->plan.procedure.seconds);
     per_target.push_back(target_json(planning_task, *t));
   }
   return {{"targets", todo.size()},
           {"planned", planned},
           {"strict", strict},
+          {"unreachable", unreachable},
           {"force_limit_N", options.force_limit_N},
           {"budget_env_steps", options.max_env_steps},
           {"seeds", seeds},

@@ -7,6 +7,7 @@
 #include "lib/runner/replay_controller.hpp"
 #include "lib/runner/row_planned.hpp"
 #include "lib/runner/run_episode.hpp"
+#include "plan/narrowest_passage.hpp"
 #include "plan/plan_json.hpp"
 #include "plan/plan_procedure.hpp"
 #include "plan/planning_task.hpp"
@@ -122,4 +123,68 @@ TEST_CASE("plan: a row's planned figure covers every target of its anatomies", "
     CHECK(t["seed"] == 1);  // both seeds tried
     CHECK(t["tip_to_target_mm"].get<double>() > 10.0);
   }
+}
+
+TEST_CASE("plan: the narrowest passage of a course is found where the lumen is narrower than the wire", "[plan]") {
+  gw::CenterlineGraph g;  // one straight branch along z, 0.5 mm point spacing, 40 mm
+  g.branches.push_back({0, -1, {}, {}});
+  for (int k = 0; k <= 80; ++k) {
+    g.branches[0].points.emplace_back(0.0, 0.0, 0.5 * k);
+    g.branches[0].radii.push_back(k >= 40 && k <= 46 ? 0.1 : 1.5);  // 20-23 mm: 0.1 mm, a 3 mm stretch
+  }
+  g.inlet = {0, Eigen::Vector3d::Zero(), 0, 1.5};
+  g.targets.push_back({1, Eigen::Vector3d(0, 0, 40), 0, 1.5});
+  const auto passage = gw::narrowest_passage(g, 1, 0.178);
+  REQUIRE(passage);
+  CHECK(passage->start_mm == Approx(20.0));
+  CHECK(passage->length_mm == Approx(3.0));
+  CHECK(passage->radius_mm == Approx(0.1));
+  CHECK_FALSE(gw::narrowest_passage(g, 1, 0.05));           // a thinner wire passes
+  CHECK_FALSE(gw::narrowest_passage(g, 1, 0.178, 3.5));     // shorter than the least length that counts
+  g.branches[0].radii.assign(81, 1.5);
+  g.branches[0].radii[60] = 0.01;                           // one dipping point is not a wall across the lumen
+  CHECK_FALSE(gw::narrowest_passage(g, 1, 0.178));
+  CHECK_THROWS_WITH(gw::narrowest_passage(g, 2, 0.178), Catch::Contains("target"));
+}
+
+TEST_CASE("plan: a target behind a lumen narrower than the wire is reported unreachable, with the reason, at once",
+          "[plan]") {
+  // The training Y with its second branch's lumen narrowed, over 4 mm, below the 0.014" wire's radius (0.178 mm).
+  gw::Anatomy narrowed = gw::load_anatomy("t1", kT1 + ".stl", kT1 + ".truth.json");
+  const int branch = narrowed.graph.targets[1].branch;
+  std::vector<double>& radii = narrowed.graph.branches[static_cast<std::size_t>(branch)].radii;
+  const std::size_t mid = radii.size() / 2;
+  for (std::size_t k = mid; k < mid + 20 && k < radii.size(); ++k) radii[k] = 0.12;
+  const gw::NavigationTask task =
+      gw::make_navigation_task(gw::planning_task_config(gw::TaskConfig{}), gw::default_wire_params(), {narrowed});
+  const gw::ProcedurePlan plan = gw::plan_procedure(task, 0, 2, 0);
+  CHECK(plan.kind == gw::PlanKind::kNone);
+  CHECK(plan.strict.env_steps == 0);  // nothing searched: no budget spent on it
+  CHECK_THAT(plan.why, Catch::StartsWith("unreachable: the lumen narrows to 0.120 mm radius"));
+  CHECK_THAT(plan.why, Catch::Contains("below the wire's radius 0.178 mm"));
+  CHECK(gw::plan_to_json(plan)["why"] == plan.why);
+  CHECK(gw::plan_procedure(task, 0, 1, 0, {}).kind != gw::PlanKind::kNone);  // the other branch is untouched
+  const nlohmann::json row = gw::row_planned(task, 1, 0, {}, 1);
+  CHECK(row["unreachable"] == 1);
+  CHECK(row["per_target"][1]["why"] == plan.why);
+}
+
+TEST_CASE("plan: a search that runs out of ways forward says so, and one that runs out of budget says that", "[plan]") {
+  gw::PlanOptions o;
+  o.strict_only = true;
+  o.max_env_steps = 40;
+  const gw::ProcedurePlan spent = gw::plan_procedure(y_task(), 0, 1, 0, o);
+  CHECK_FALSE(spent.strict.exhausted);
+  CHECK_THAT(spent.why, Catch::StartsWith("budget spent: "));
+  CHECK_THAT(spent.why, Catch::Contains("not a proof"));
+  o.max_env_steps = 20000;
+  o.hold_steps = 100;      // one maneuver pushes 40 mm: into the fork and past it
+  o.force_limit_N = 1e-6;  // and any touch of the wall with the tip is over the budget
+  const gw::ProcedurePlan boxed = gw::plan_procedure(y_task(), 0, 1, 0, o);
+  INFO(boxed.why);
+  CHECK(boxed.kind == gw::PlanKind::kNone);
+  CHECK(boxed.strict.exhausted);
+  CHECK(boxed.strict.env_steps < o.max_env_steps);
+  CHECK_THAT(boxed.why, Catch::StartsWith("search exhausted: "));
+  CHECK(gw::plan_to_json(boxed)["search"]["strict"]["exhausted"] == true);
 }

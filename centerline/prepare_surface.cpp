@@ -1,5 +1,6 @@
 #include "centerline/prepare_surface.hpp"
 
+#include "base/util/fixed_digits.hpp"
 #include "centerline/alpha_wrap_surface.hpp"
 #include "centerline/smooth_staircase.hpp"
 #include "centerline/vessel_scale.hpp"
@@ -156,13 +157,6 @@ double face_area(const SMesh& sm, SMesh::Face_index f) {
                                                       sm.point(sm.target(sm.next(sm.halfedge(f)))))));
 }
 
-std::string fixed(double v, int digits = 2) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(digits);
-  s << v;
-  return s.str();
-}
 
 // Stage "islands": drops pieces below the area share; returns how many pieces remain.
 int drop_islands(SMesh& sm, const SurfaceRepairOptions& o, ClosedSurface& out) {
@@ -191,7 +185,7 @@ int drop_islands(SMesh& sm, const SurfaceRepairOptions& o, ClosedSurface& out) {
     sm.collect_garbage();
     out.repairs.push_back("dropped " + std::to_string(out.dropped_components) + " island(s) of " +
                           std::to_string(out.dropped_faces) + " faces in all (largest " +
-                          fixed(out.largest_dropped_area) + " mm^2, the vessel " + fixed(largest, 0) + " mm^2)");
+                          fixed_digits(out.largest_dropped_area) + " mm^2, the vessel " + fixed_digits(largest, 0) + " mm^2)");
   }
   sm.remove_property_map(component);
   return kept;
@@ -313,8 +307,8 @@ void wrap_if_needed(SMesh& sm, const SurfaceRepairOptions& options, ClosedSurfac
     out.wrap_offset = options.wrap_offset_factor * scale.small_radius;
     out.mesh = alpha_wrap_surface(soup, out.wrap_alpha, out.wrap_offset);
     out.wrapped = true;
-    out.repairs.push_back("alpha-wrapped (" + why + "): alpha " + fixed(out.wrap_alpha, 3) + ", offset " +
-                          fixed(out.wrap_offset, 3) + " (thin vessels' radius " + fixed(scale.small_radius, 3) + ")");
+    out.repairs.push_back("alpha-wrapped (" + why + "): alpha " + fixed_digits(out.wrap_alpha, 3) + ", offset " +
+                          fixed_digits(out.wrap_offset, 3) + " (thin vessels' radius " + fixed_digits(scale.small_radius, 3) + ")");
     sm = to_surface_mesh(out.mesh);
   }
 }
@@ -343,7 +337,7 @@ void smooth_and_measure(SMesh& sm, const SurfaceRepairOptions& options, ClosedSu
     out.mesh = taubin_smooth(out.mesh, options.staircase_passes);
     sm = to_surface_mesh(out.mesh);  // same vertex and face order: volume and area of the smoothed surface
     out.smoothed = true;
-    out.repairs.push_back("voxel staircase (" + fixed(100.0 * out.lattice_share, 0) +
+    out.repairs.push_back("voxel staircase (" + fixed_digits(100.0 * out.lattice_share, 0) +
                           "% of the area faces lattice directions): Taubin-smoothed, " +
                           std::to_string(options.staircase_passes) + " passes");
   }

@@ -1,16 +1,15 @@
 #include "plan/plan_procedure.hpp"
 
+#include "base/util/fixed_digits.hpp"
 #include "plan/narrowest_passage.hpp"
 
 #include <array>
 #include <chrono>
 #include <cmath>
 #include <deque>
-#include <iomanip>
 #include <limits>
 #include <optional>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 #include <utility>
 
@@ -217,12 +216,6 @@ int lowest_force(const std::deque<Node>& nodes, const std::vector<int>& found) {
   return best;
 }
 
-std::string fixed(double v, int digits) {
-  std::ostringstream o;
-  o << std::fixed << std::setprecision(digits) << v;
-  return o.str();
-}
-
 // Why no plan was found, from what the searches did (`procedure` null: only the strict search ran).
 std::string why_none(const SearchStats& strict, const SearchStats* procedure, long budget) {
   const SearchStats& last = procedure ? *procedure : strict;
@@ -243,11 +236,12 @@ std::optional<ProcedurePlan> too_narrow(const NavigationTask& task, int anatomy,
   const auto passage = narrowest_passage(task.anatomies[static_cast<std::size_t>(anatomy)].graph, target_id, wire_radius);
   if (!passage) return std::nullopt;
   ProcedurePlan plan;
+  plan.narrow = passage;
   plan.tip_end = root.tip;
   plan.tip_to_target_mm = tip_to_target_mm(root);
-  plan.why = "unreachable: the lumen narrows to " + fixed(passage->radius_mm, 3) + " mm radius over " +
-             fixed(passage->length_mm, 1) + " mm from " + fixed(passage->start_mm, 1) +
-             " mm along the course, below the wire's radius " + fixed(wire_radius, 3) +
+  plan.why = "unreachable: the lumen narrows to " + fixed_digits(passage->radius_mm, 3) + " mm radius over " +
+             fixed_digits(passage->length_mm, 1) + " mm from " + fixed_digits(passage->start_mm, 1) +
+             " mm along the course, below the wire's radius " + fixed_digits(wire_radius, 3) +
              " mm; the walls are rigid, so no maneuver passes (nothing was searched)";
   return plan;
 }

@@ -19,9 +19,11 @@
 // the tip got nearest, and why none was found: the course narrows below the wire (then nothing is searched), the
 // search ran out of ways forward, or of budget. Deterministic: the same inputs give the same plan.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "plan/narrowest_passage.hpp"
 #include "task/episode.hpp"
 #include "task/navigation_task.hpp"
 
@@ -70,6 +72,7 @@ struct ProcedurePlan {
   // None found: why, in words. "unreachable: ..." where the course narrows below the wire (narrowest_passage; no
   // search is run), "search exhausted: ..." where every way forward was tried, "budget spent: ..." otherwise.
   std::string why;
+  std::optional<NarrowPassage> narrow;  // set when the course narrows below the wire (the first kind of why)
 };
 
 ProcedurePlan plan_procedure(const NavigationTask& task, int anatomy, int target_id, std::uint64_t seed,

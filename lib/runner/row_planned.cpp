@@ -77,7 +77,7 @@ nlohmann::json row_planned(const NavigationTask& planning_task, int seeds, std::
   for (const PlannedTarget* t : todo) {
     planned += t->plan.kind != PlanKind::kNone;
     strict += t->plan.kind == PlanKind::kStrict;
-    unreachable += t->plan.kind == PlanKind::kNone && t->plan.why.rfind("unreachable", 0) == 0;
+    unreachable += t->plan.narrow.has_value();
     seconds.push_back(t->plan.strict.seconds + t->plan.procedure.seconds);
     per_target.push_back(target_json(planning_task, *t));
   }

@@ -3,6 +3,8 @@
     python anatomies/segmentation/make_arch_specs.py               # numpy only; prints each arch's measurements
     python anatomies/segmentation/make_arch_specs.py --validation  # three held-apart arches for choices
                                                                    # (anatomies/validation/arches/)
+    python anatomies/segmentation/make_arch_specs.py --stubs       # those three with the great vessels cut to
+                                                                   # stubs 1, 2 and 3 own radii long (9 arches)
 
 Frame (mm): x to the patient's left, y posterior, z superior. The arch lies near the vertical plane
 through the ascending and descending aorta, whose horizontal direction u runs from the ascending
@@ -180,6 +182,36 @@ VALIDATION_ARCHES = [
     ("arch_val_type3", 50.0, 150, 112, 72, "Type III", "Type III is > 2"),
 ]
 
+def stub_arch(name, height, theta_bct, theta_lcca, theta_lsa, radii_out, description):
+    """The arch with each great vessel cut short: a straight stub along its first direction, of its first radius,
+    ending `radii_out` of its own radii outside the aortic lumen (as a phantom or a cropped scan shows them, the
+    great vessels protruding 1-3 radii from the arch's roof). Returns the spec and, per stub, how far its end lies
+    outside the aortic lumen (mm)."""
+    spec, _ = arch(name, height, theta_bct, theta_lcca, theta_lsa, description)
+    root, us = catmull_rom(spec["branches"][0]["points"])
+    root_r = radius_at(spec["branches"][0]["radius"], us)
+    out = {}
+    for b in spec["branches"][1:]:
+        p = np.asarray(b["points"], float)
+        r = b["radius"][0]
+        d = (p[1] - p[0]) / np.linalg.norm(p[1] - p[0])
+        for t in np.arange(0.0, 100.0, 0.25):  # walk out of the aorta until the end is radii_out radii outside it
+            end = p[0] + t * d
+            outside = float(np.min(np.linalg.norm(root - end, axis=1) - root_r))
+            if outside >= radii_out * r:
+                break
+        b["points"] = [[round(float(v), 3) for v in q] for q in (p[0], p[0] + 0.5 * t * d, end)]
+        b["radius"] = [r, r, r]
+        out[b["name"]] = round(outside, 1)
+    return spec, out
+
+
+STUB_DESCRIPTION = ("Validation arch {base} (anatomies/validation/arches) with its three great vessels cut to straight stubs "
+                    "along their first direction, of their first radius, each ending {k} of its own radii outside the aortic "
+                    "lumen: the roof of an arch as a phantom or a cropped scan shows it. Inlet: the descending aorta. "
+                    "4 targets, 3 bifurcations. Written by anatomies/segmentation/make_arch_specs.py --stubs.")
+
+
 def spec_text(spec):
     """The committed specs' layout: one line per field, one line per branch."""
     head = ",\n".join(f"  {json.dumps(k)}: {json.dumps(spec[k])}" for k in ("name", "description", "units"))
@@ -190,6 +222,15 @@ def spec_text(spec):
 if __name__ == "__main__":
     import sys
     validation = "--validation" in sys.argv[1:]
+    if "--stubs" in sys.argv[1:]:
+        out = HERE.parent / "validation" / "arches"
+        for name, height, tb, tc, ts, _, _ in VALIDATION_ARCHES:
+            for k in (1, 2, 3):
+                desc = STUB_DESCRIPTION.format(base=name, k=k)
+                spec, info = stub_arch(f"{name}_stub{k}", height, tb, tc, ts, k, desc)
+                (out / f"{name}_stub{k}.spec.json").write_text(spec_text(spec))
+                print(f"{name}_stub{k}", json.dumps(info))
+        sys.exit(0)
     out = HERE.parent / "validation" / "arches" if validation else HERE
     out.mkdir(parents=True, exist_ok=True)
     for name, height, tb, tc, ts, kind, rule in VALIDATION_ARCHES if validation else ARCHES:

@@ -50,7 +50,9 @@ int main(int argc, char** argv) {
       if (hit) std::cerr << "centerline: " << path << ": from cache\n";
       else
         std::cerr << "centerline: " << path << ": " << stats.input_faces << " faces -> " << stats.skeleton_faces
-                  << " for MCF" << (stats.skeleton_passes > 1 ? " (remeshed finer for a thin branch)" : "")
+                  << " for MCF" << (stats.missed_ends > 0 ? " (" + std::string(stats.skeleton_passes > 1 ? "remeshed finer for " : "") +
+                                                  std::to_string(stats.missed_ends) + " vessel end(s) the first skeleton missed)"
+                           : stats.skeleton_passes > 1 ? " (remeshed finer for a thin branch)" : "")
                   << "; prepare " << stats.seconds_prepare << " s, skeleton " << stats.seconds_skeleton
                   << " s, graph " << stats.seconds_graph << " s; wall roughness "
                   << (stats.wall_noise > 0 ? std::to_string(stats.wall_noise) + " of the radius (rough-wall section tests)"

@@ -16,7 +16,7 @@
 namespace gw {
 
 // Bumped whenever the extraction changes its output.
-inline constexpr const char* kCenterlinePipelineVersion = "mcf-recentre-13-thin-side-branches";
+inline constexpr const char* kCenterlinePipelineVersion = "mcf-recentre-14-flat-ends";
 
 struct CacheOptions {
   bool enabled = true;

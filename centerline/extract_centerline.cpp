@@ -1,8 +1,10 @@
 #include "centerline/extract_centerline.hpp"
+#include "centerline/flat_ends.hpp"
 #include "base/util/median.hpp"
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <cmath>
 #include <limits>
 #include <queue>
@@ -47,6 +49,81 @@ double thinnest_chain_radius(const SkeletonTree& tree, const VesselWall& wall) {
   return thinnest;
 }
 
+// The flat vessel ends (flat_ends.hpp) that no terminal of `tree` lies within kEndReach of the end's radii of. On the
+// validation trees, training patterns and validation arches, the nearest terminal of the first skeleton lies within
+// 3.3 radii of every end that is a vessel's; on the stub arches (anatomies/validation/arches/*_stub*) 15.5 radii
+// and more from every stub's.
+constexpr double kEndReach = 6.0;
+// `reach(terminal, end)`: how near (mm) a terminal must lie.
+std::vector<SurfaceCap> ends_missed(const SkeletonTree& tree, const std::vector<SurfaceCap>& ends,
+                                    const std::function<double(const Eigen::Vector3d&, const SurfaceCap&)>& reach) {
+  const std::vector<int> degree = tree.degree();
+  std::vector<SurfaceCap> missed;
+  for (const SurfaceCap& end : ends) {
+    bool reached = false;
+    for (size_t v = 0; v < tree.nodes.size() && !reached; ++v)
+      reached = degree[v] == 1 && (tree.nodes[v] - end.centre).norm() < reach(tree.nodes[v], end);
+    if (!reached) missed.push_back(end);
+  }
+  return missed;
+}
+
+// Adds a terminal chain from the skeleton point on the end's axis (the inward normal from its centre, within half
+// its radius) nearest the end, else the point nearest that axis (the chain split there, a new junction; a terminal
+// there goes on instead) straight to half the end's radius inside it. `grafted`: the chains earlier
+// grafts made or extended, which a later one does not take (per chain; grows with the tree).
+void graft_end(SkeletonTree& tree, const SurfaceCap& end, std::vector<char>& grafted) {
+  grafted.resize(tree.chains.size(), 0);
+  size_t best_chain = 0, best_point = 0;
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < tree.chains.size(); ++i)
+    for (size_t k = 0; k < tree.chains[i].points.size() && !grafted[i]; ++k) {
+      const Eigen::Vector3d q = tree.chains[i].points[k] - end.centre;  // its distance to the end's axis, inwards
+      const double t = std::max(0.0, -q.dot(end.normal));
+      const double off = (q + t * end.normal).norm();
+      const double score = off <= 0.5 * end.radius ? t : 1e9 + off;  // on the axis: the point nearest the end
+      if (score < best) best = score, best_chain = i, best_point = k;
+    }
+  SkeletonChain& c = tree.chains[best_chain];
+  const Eigen::Vector3d to = end.centre - 0.5 * end.radius * end.normal;
+  const auto straight = [&](const Eigen::Vector3d& from) {  // from (excluded) to `to`, about 0.5 mm apart
+    std::vector<Eigen::Vector3d> p;
+    const int n = std::max(2, static_cast<int>(std::ceil((to - from).norm() / 0.5)));
+    for (int k = 1; k <= n; ++k) p.push_back(from + (to - from) * (static_cast<double>(k) / n));
+    return p;
+  };
+  int junction = best_point == 0 ? c.a : best_point + 1 == c.points.size() ? c.b : -1;
+  if (junction >= 0 && tree.degree()[static_cast<size_t>(junction)] == 1) {  // a terminal: it goes on to the end
+    if (junction == c.a) std::reverse(c.points.begin(), c.points.end()), std::swap(c.a, c.b);
+    const std::vector<Eigen::Vector3d> more = straight(c.points.back());
+    c.points.insert(c.points.end(), more.begin(), more.end());
+    tree.nodes[static_cast<size_t>(junction)] = to;
+    grafted[best_chain] = 1;
+    return;
+  }
+  if (junction < 0) {  // split the chain at that point
+    junction = static_cast<int>(tree.nodes.size());
+    tree.nodes.push_back(c.points[best_point]);
+    SkeletonChain rest;
+    rest.a = junction;
+    rest.b = c.b;
+    rest.points.assign(c.points.begin() + static_cast<long>(best_point), c.points.end());
+    c.points.resize(best_point + 1);
+    c.b = junction;
+    tree.chains.push_back(std::move(rest));
+  }
+  SkeletonChain graft;
+  graft.a = junction;
+  graft.b = static_cast<int>(tree.nodes.size());
+  graft.points = {tree.nodes[static_cast<size_t>(junction)]};
+  const std::vector<Eigen::Vector3d> more = straight(graft.points.front());
+  graft.points.insert(graft.points.end(), more.begin(), more.end());
+  tree.nodes.push_back(to);
+  tree.chains.push_back(std::move(graft));
+  grafted.resize(tree.chains.size(), 0);
+  grafted.back() = 1;
+}
+
 // A vessel a few hundredths of a millimetre wide is a mesh in metres (or cm): every
 // tolerance below is in millimetres, so refuse rather than return nonsense.
 void check_millimetres(double mean_radius) {
@@ -89,11 +166,32 @@ SkeletonTree skeleton_tree(const ClosedSurface& closed, const CenterlineOptions&
   // A branch far thinner than the mean radius (the great vessels off an aortic arch: 2.5 times) gets
   // one or two edges across at that edge length, and MCF blurs its origin into its neighbour's.
   const double thin = thinnest_chain_radius(tree, wall);
-  const double fine = std::max(2 * M_PI * thin / opt.edges_around_thinnest, finest);
+  double fine = std::max(2 * M_PI * thin / opt.edges_around_thinnest, finest);
+  // A known vessel end (a capped open end, an end cut flat) that no terminal of this skeleton reaches (a great
+  // vessel cut to a stub on an arch's roof: a few triangles at this edge, contracted by MCF into the aorta's
+  // skeleton): finer, for that end's radius.
+  std::vector<SurfaceCap> ends = closed.caps;  // the open ends the intake capped, and the ends cut flat
+  for (const SurfaceCap& end : flat_ends(closed.mesh, wall)) ends.push_back(end);
+  const std::vector<SurfaceCap> missed =
+      ends_missed(tree, ends, [](const Eigen::Vector3d&, const SurfaceCap& end) { return kEndReach * end.radius; });
+  if (!missed.empty()) {
+    for (const SurfaceCap& end : missed)
+      fine = std::min(fine, std::max(2 * M_PI * end.radius / opt.edges_around_thinnest, finest));
+    stats.missed_ends = static_cast<int>(missed.size());
+  }
   if (fine < edge) {
     edge = fine;
     tree = skeleton_pass(closed, edge, wall, caps, cleanup, stats);
     stats.skeleton_passes = 2;
+  }
+  // An end MCF contracts whatever the mesh (a stub about one radius long) still gets its terminal where none lies
+  // within SkeletonCleanup::cap_factor of its radii: a chain from the skeleton's nearest point to it, which
+  // refinement re-centres like any other.
+  const auto cap_reach = [&](const Eigen::Vector3d&, const SurfaceCap& end) { return cleanup.cap_factor * end.radius; };
+  std::vector<char> grafted;
+  if (!missed.empty()) {
+    for (const SurfaceCap& end : ends_missed(tree, ends, cap_reach)) graft_end(tree, end, grafted);
+    for (const SurfaceCap& end : ends) tree.known_ends.push_back({end.centre, end.radius});
   }
   return tree;
 }
@@ -186,7 +284,8 @@ CenterlineGraph walk_from_inlet(const SkeletonTree& tree, const RefinedTree& r, 
       // A terminal chain that re-centring shrank to a stub (its junction moved onto the vessel axes
       // and the chain was cut back to there) is a spur of the skeleton, not a vessel. Dropped only
       // where the junction keeps two other children, so that it stays a bifurcation.
-      if (degree[far] == 1 && degree[v] >= 4 && polyline_length(refined[i].points) <
+      const Eigen::Vector3d far_end = c.a == v ? refined[i].points.back() : refined[i].points.front();
+      if (degree[far] == 1 && degree[v] >= 4 && !tree.at_known_end(far_end) && polyline_length(refined[i].points) <
           opt.spur_factor * *std::max_element(refined[i].radii.begin(), refined[i].radii.end())) {
         continue;
       }

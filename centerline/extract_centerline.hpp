@@ -27,7 +27,8 @@ struct CenterlineOptions {
 struct CenterlineStats {
   long input_faces = 0;     // faces of the given mesh
   long skeleton_faces = 0;  // faces after remeshing, what MCF ran on
-  int skeleton_passes = 1;  // 2: remeshed finer for a thin branch (options.edges_around_thinnest)
+  int skeleton_passes = 1;  // 2: remeshed finer for a thin branch (options.edges_around_thinnest) or a missed end
+  int missed_ends = 0;      // known vessel ends (caps, flat ends) the first skeleton had no terminal near
   int capped_holes = 0, dropped_components = 0;
   double mean_radius = 0.0;  // 2 * volume / area of the closed surface (mm)
   double seconds_prepare = 0, seconds_skeleton = 0, seconds_graph = 0;
@@ -43,7 +44,11 @@ struct CenterlineStats {
 //  2. remesh_surface to edges of mean radius / edges_per_radius, so MCF cost depends on
 //     the vessel size rather than on the input tessellation; once more, finer, when the first
 //     skeleton (3-4) has a branch with fewer than edges_around_thinnest edges round it (an aortic
-//     arch: the mean radius is the aorta's, the great vessels are 2.5 times thinner);
+//     arch: the mean radius is the aorta's, the great vessels are 2.5 times thinner), or
+//     when a known vessel end (a capped open end, or one cut flat: flat_ends.hpp) has no terminal of
+//     the first skeleton within 6 of its radii (a great vessel cut to a stub on an arch's roof); an
+//     end still without a terminal then gets a grafted chain, and the arms ending at known ends are
+//     never dropped as stubs (SkeletonTree::known_ends);
 //  3. mcf_skeleton (its node positions; correspondence centroids scatter when few
 //     surface vertices collapse onto a node, so they are not used);
 //  4. clean_skeleton: prune spurs, merge junction clusters into single bifurcations;

@@ -100,7 +100,7 @@ std::vector<Arm> junction_arms(const SkeletonTree& tree, const std::vector<Refin
     for (const Arm& a : arms) {
       const SkeletonChain& c = tree.chains[a.chain];
       const int far = a.reversed ? c.a : c.b;
-      const bool stub = degree[far] == 1 &&
+      const bool stub = degree[far] == 1 && !tree.at_known_end(a.points.back()) &&
                         polyline_length(a.points) < kStubFactor * *std::max_element(a.radii.begin(), a.radii.end());
       if (!stub) real.push_back(a);
     }

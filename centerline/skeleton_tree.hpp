@@ -14,10 +14,20 @@ struct SkeletonChain {
   std::vector<Eigen::Vector3d> points;   // a ... b, both ends included
 };
 
+// A vessel end known from the surface (a capped open end, a flat end: flat_ends.hpp): an arm ending there is a
+// vessel, never a spur.
+struct VesselEnd {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double radius = 0.0;
+};
+
 struct SkeletonTree {
   std::vector<Eigen::Vector3d> nodes;  // key nodes: terminals (1 chain) and junctions (3+)
   std::vector<SkeletonChain> chains;   // no cycles, every node used
+  std::vector<VesselEnd> known_ends;   // set where the first skeleton missed a known end (extract_centerline.cpp)
   std::vector<int> degree() const;
+  // Whether p lies within two radii of a known end (the cap rule of SkeletonCleanup::cap_factor).
+  bool at_known_end(const Eigen::Vector3d& p) const;
 };
 
 struct SkeletonCleanup {

@@ -212,6 +212,11 @@ STUB_DESCRIPTION = ("Validation arch {base} (anatomies/validation/arches) with i
                     "4 targets, 3 bifurcations. Written by anatomies/segmentation/make_arch_specs.py --stubs.")
 
 
+# Stub arches of the segmentation-like set (training/guidewire_nav/segmentation_set.py): measured arches with their
+# great vessels cut to stubs, (arch, stub length in radii). Chosen before any was extracted.
+SEGMENTATION_STUBS = [("arch_type1", 1), ("arch_type2", 2)]
+
+
 def spec_text(spec):
     """The committed specs' layout: one line per field, one line per branch."""
     head = ",\n".join(f"  {json.dumps(k)}: {json.dumps(spec[k])}" for k in ("name", "description", "units"))
@@ -233,6 +238,14 @@ if __name__ == "__main__":
         sys.exit(0)
     out = HERE.parent / "validation" / "arches" if validation else HERE
     out.mkdir(parents=True, exist_ok=True)
+    if not validation:  # the segmentation set's stub arches, beside the arches they are cut from
+        for base, k in SEGMENTATION_STUBS:
+            name, height, tb, tc, ts, _, _ = next(a for a in ARCHES if a[0] == base)
+            desc = STUB_DESCRIPTION.replace("Validation arch {base} (anatomies/validation/arches)",
+                                            "Arch {base} of the segmentation-like set").format(base=base, k=k)
+            spec, info = stub_arch(f"{base}_stub{k}", height, tb, tc, ts, k, desc)
+            (out / f"{base}_stub{k}.spec.json").write_text(spec_text(spec))
+            print(f"{base}_stub{k}", json.dumps(info))
     for name, height, tb, tc, ts, kind, rule in VALIDATION_ARCHES if validation else ARCHES:
         desc = COMMON.format(type=kind, width=WIDTH, height=height, rule=rule)
         spec, info = arch(name, height, tb, tc, ts, desc)

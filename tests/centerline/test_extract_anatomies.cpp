@@ -22,7 +22,9 @@ void check_anatomy(const AnatomyEntry& a) {
     const CenterlineGraph truth = read_centerline(a.truth);
     CenterlineOptions options;
     options.inlet = truth.inlet.position;
-    const CenterlineGraph graph = extract_centerline(load_valid_mesh(a.mesh), options);
+    CenterlineStats stats;
+    const CenterlineGraph graph = extract_centerline(load_valid_mesh(a.mesh), options, &stats);
+    CHECK(stats.missed_ends == 0);  // every flat end reached by the first skeleton: no graft, no end-driven pass
     const CenterlineAccuracy acc = compare_centerlines(graph, truth);
     INFO(accuracy_to_json(acc));
     CHECK(acc.same_topology);
@@ -92,6 +94,7 @@ TEST_CASE("an open, noisy coronary tree (like a clinical segmentation) meets the
   const CenterlineAccuracy acc = compare_centerlines(graph, anatomy.truth);
   WARN(accuracy_to_json(acc));  // in the log: how far the noise moved the result
   CHECK(stats.capped_holes == static_cast<int>(anatomy.truth.targets.size()) + 1);
+  CHECK(stats.missed_ends == 0);  // every capped end reached by the first skeleton
   CHECK(acc.same_topology);
   CHECK(acc.mean_distance <= 0.05);
   CHECK(acc.p95_distance <= 0.15);

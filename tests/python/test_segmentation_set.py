@@ -59,7 +59,7 @@ def test_set_covers_every_corruption_in_every_format(seg_set):
     assert sum(e["scale_hint"] == "m" for e in entries.values()) == 2
     assert {e["source_truth"].split("/")[-1] for e in entries.values()} == {
         "rca_validation.truth.json", "pl_validation.truth.json", "arch_type1.truth.json",
-        "arch_type2.truth.json", "arch_type3.truth.json"}
+        "arch_type2.truth.json", "arch_type3.truth.json", "arch_type1_stub1.truth.json", "arch_type2_stub2.truth.json"}
     assert not any("anatomies/test/" in e["source_truth"] for e in entries.values())  # frozen test rows
 
 
@@ -127,11 +127,11 @@ def test_arch_truths_are_the_generators(tmp_path):
     gen = guidewire_nav.app_path("anatomy-gen")
     if not gen.is_file():
         pytest.skip(f"anatomy-gen not built ({gen}); set GW_BUILD_DIR")
-    for k in (1, 2, 3):
-        spec = REPO / f"anatomies/segmentation/arch_type{k}.spec.json"
+    for name in ("arch_type1", "arch_type2", "arch_type3", "arch_type1_stub1", "arch_type2_stub2"):
+        spec = REPO / f"anatomies/segmentation/{name}.spec.json"
         subprocess.run([str(gen), "--spec", str(spec), "--out", str(tmp_path)], check=True, capture_output=True)
-        assert (tmp_path / f"arch_type{k}.truth.json").read_bytes() == \
-               (REPO / f"anatomies/segmentation/arch_type{k}.truth.json").read_bytes()
+        assert (tmp_path / f"{name}.truth.json").read_bytes() == \
+               (REPO / f"anatomies/segmentation/{name}.truth.json").read_bytes()
 
 
 # The issue's accuracy bar (mean <= 5% of the radius, bifurcations within 0.5 radius) is met on every
@@ -159,7 +159,14 @@ def extracted(seg_set, tmp_path_factory):
     return results
 
 
-@pytest.mark.parametrize("case", [c[0] for c in seg.CASES])
+# A known limitation (centerline/README.md "Great vessels cut to stubs"): on a closed voxel surface the stubs' cut
+# ends are terraces, not the flat disks flat_ends.hpp finds, and MCF contracts stubs of one radius: the aorta alone.
+# Both stub cases were added before either was extracted; the open one passes (its ends are capped holes).
+STUB_LIMIT = pytest.mark.xfail(strict=True, reason="stubs on a closed voxel surface: ends not found")
+CASES = [pytest.param(c[0], marks=STUB_LIMIT) if c[0] == "arch1_stub1_flipped" else c[0] for c in seg.CASES]
+
+
+@pytest.mark.parametrize("case", CASES)
 def test_segmentation_mesh_gives_the_right_tree(seg_set, extracted, case):
     """Every mesh is taken in without a refusal, its repairs are reported, and the tree is the truth's:
     each true end has its own extracted end within 2 radii, as many targets, as many bifurcations, and no branch far off its vessel (mean <= 0.25 r)."""
@@ -177,7 +184,7 @@ def test_segmentation_mesh_gives_the_right_tree(seg_set, extracted, case):
         assert "read as metres" in err, f"{case}: the scaling from metres is not reported on stderr: {err}"
 
 
-@pytest.mark.parametrize("case", [c[0] for c in seg.CASES])
+@pytest.mark.parametrize("case", CASES)
 def test_segmentation_mesh_meets_the_accuracy_bar(extracted, case):
     """The issue's bar: mean distance <= 5% of the local true radius, every true bifurcation within 0.5
     of its parent's radius of an extracted one, on top of the right tree."""

@@ -67,6 +67,8 @@ SOURCES = {
     "pl_validation": ("anatomies/validation/pl_validation/pl_validation.truth.json",
                       "anatomies/validation/pl_validation/pl_validation.spec.json", "coronary"),
     **{f"arch_type{k}": (f"{SEG}/arch_type{k}.truth.json", f"{SEG}/arch_type{k}.spec.json", "arch") for k in (1, 2, 3)},
+    # great vessels cut to stubs of 1 and 2 radii (make_arch_specs.SEGMENTATION_STUBS)
+    **{n: (f"{SEG}/{n}.truth.json", f"{SEG}/{n}.spec.json", "arch") for n in ("arch_type1_stub1", "arch_type2_stub2")},
 }
 NOISE = ["label_noise", "islands"]
 # name, source, format, corruptions (label noise and islands for all). Every corruption at least twice,
@@ -81,6 +83,8 @@ CASES = [
     ("arch2_open_nonmanifold", "arch_type2", "obj", ["non_manifold", "open_ends"]),
     ("arch3_nonmanifold_m", "arch_type3", "stl", ["non_manifold", "metres"]),
     ("arch3_open_flipped", "arch_type3", "ply", ["open_ends", "flipped"]),
+    ("arch1_stub1_flipped", "arch_type1_stub1", "stl", ["flipped"]),
+    ("arch2_stub2_open", "arch_type2_stub2", "obj", ["open_ends"]),
 ]
 LARGE = ("pl_large", "pl_validation", "stl", [])
 LARGE_VOXEL = 0.085

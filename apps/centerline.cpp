@@ -14,6 +14,18 @@
 #include "base/graph/centerline_graph.hpp"
 #include "base/util/parse_point.hpp"
 
+namespace {
+
+// Why the skeleton was made twice, or a missed end grafted, in words ("" when neither).
+std::string second_pass_note(const gw::CenterlineStats& stats) {
+  const std::string finer = stats.skeleton_passes > 1 ? "remeshed finer for " : "";
+  if (stats.missed_ends > 0)
+    return " (" + finer + std::to_string(stats.missed_ends) + " vessel end(s) the first skeleton missed)";
+  return stats.skeleton_passes > 1 ? " (remeshed finer for a thin branch)" : "";
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"Extract the centerline graph (inlet, numbered targets, branches, bifurcations) of a vessel surface"};
   std::string path, out, inlet_text;
@@ -50,10 +62,7 @@ int main(int argc, char** argv) {
       if (hit) std::cerr << "centerline: " << path << ": from cache\n";
       else
         std::cerr << "centerline: " << path << ": " << stats.input_faces << " faces -> " << stats.skeleton_faces
-                  << " for MCF" << (stats.missed_ends > 0 ? " (" + std::string(stats.skeleton_passes > 1 ? "remeshed finer for " : "") +
-                                                  std::to_string(stats.missed_ends) + " vessel end(s) the first skeleton missed)"
-                           : stats.skeleton_passes > 1 ? " (remeshed finer for a thin branch)" : "")
-                  << "; prepare " << stats.seconds_prepare << " s, skeleton " << stats.seconds_skeleton
+                  << " for MCF" << second_pass_note(stats) << "; prepare " << stats.seconds_prepare << " s, skeleton " << stats.seconds_skeleton
                   << " s, graph " << stats.seconds_graph << " s; wall roughness "
                   << (stats.wall_noise > 0 ? std::to_string(stats.wall_noise) + " of the radius (rough-wall section tests)"
                                            : std::string("below 1% of the radius (smooth)"))

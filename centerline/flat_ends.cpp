@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
+#include <cstdint>
 #include <utility>
 
 namespace gw {
@@ -13,20 +13,31 @@ namespace {
 constexpr double kPlanarCos = 0.99939;  // cos 2 degrees: a face of the patch against its first face
 constexpr int kMinFaces = 12;
 
-// Per face, its three neighbours across its edges (-1: none).
+// Per face, its three neighbours across its edges (-1: none; an edge shared by more than two faces has none).
 std::vector<std::array<int, 3>> face_neighbours(const Eigen::MatrixX3i& F) {
-  std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> edges;  // sorted edge -> (face, slot)
+  struct Half {
+    std::uint64_t edge;  // the two vertex ids, smaller first
+    int face, slot;
+    bool operator<(const Half& o) const { return edge != o.edge ? edge < o.edge : face < o.face; }
+  };
+  std::vector<Half> halves;
+  halves.reserve(static_cast<size_t>(3 * F.rows()));
   for (int f = 0; f < F.rows(); ++f)
     for (int k = 0; k < 3; ++k) {
-      const int a = F(f, k), b = F(f, (k + 1) % 3);
-      edges[{std::min(a, b), std::max(a, b)}].push_back({f, k});
+      const auto a = static_cast<std::uint64_t>(F(f, k)), b = static_cast<std::uint64_t>(F(f, (k + 1) % 3));
+      halves.push_back({std::min(a, b) << 32 | std::max(a, b), f, k});
     }
+  std::sort(halves.begin(), halves.end());
   std::vector<std::array<int, 3>> nb(static_cast<size_t>(F.rows()), {-1, -1, -1});
-  for (const auto& [edge, faces] : edges)
-    if (faces.size() == 2) {
-      nb[static_cast<size_t>(faces[0].first)][static_cast<size_t>(faces[0].second)] = faces[1].first;
-      nb[static_cast<size_t>(faces[1].first)][static_cast<size_t>(faces[1].second)] = faces[0].first;
+  for (size_t i = 0; i < halves.size();) {
+    size_t j = i;
+    while (j < halves.size() && halves[j].edge == halves[i].edge) ++j;
+    if (j - i == 2) {
+      nb[static_cast<size_t>(halves[i].face)][static_cast<size_t>(halves[i].slot)] = halves[i + 1].face;
+      nb[static_cast<size_t>(halves[i + 1].face)][static_cast<size_t>(halves[i + 1].slot)] = halves[i].face;
     }
+    i = j;
+  }
   return nb;
 }
 

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <functional>
 #include <cmath>
 #include <limits>
 #include <queue>
@@ -49,24 +48,24 @@ double thinnest_chain_radius(const SkeletonTree& tree, const VesselWall& wall) {
   return thinnest;
 }
 
-// The flat vessel ends (flat_ends.hpp) that no terminal of `tree` lies within kEndReach of the end's radii of. On the
-// validation trees, training patterns and validation arches, the nearest terminal of the first skeleton lies within
-// 3.3 radii of every end that is a vessel's; on the stub arches (anatomies/validation/arches/*_stub*) 15.5 radii
-// and more from every stub's.
-constexpr double kEndReach = 6.0;
-// `reach(terminal, end)`: how near (mm) a terminal must lie.
-std::vector<SurfaceCap> ends_missed(const SkeletonTree& tree, const std::vector<SurfaceCap>& ends,
-                                    const std::function<double(const Eigen::Vector3d&, const SurfaceCap&)>& reach) {
+// The known vessel ends (capped open ends, flat ends) that no terminal of `tree` lies within `radii` of the end's
+// radii of.
+std::vector<SurfaceCap> ends_missed(const SkeletonTree& tree, const std::vector<SurfaceCap>& ends, double radii) {
   const std::vector<int> degree = tree.degree();
   std::vector<SurfaceCap> missed;
   for (const SurfaceCap& end : ends) {
     bool reached = false;
     for (size_t v = 0; v < tree.nodes.size() && !reached; ++v)
-      reached = degree[v] == 1 && (tree.nodes[v] - end.centre).norm() < reach(tree.nodes[v], end);
+      reached = degree[v] == 1 && (tree.nodes[v] - end.centre).norm() < radii * end.radius;
     if (!reached) missed.push_back(end);
   }
   return missed;
 }
+
+// How near the first skeleton's terminals must come to a known end: on the validation trees, training patterns and
+// validation arches the nearest lies within 3.3 of the end's radii of every end that is a vessel's; on the stub
+// arches (anatomies/validation/arches/*_stub*) 15.5 and more from every stub's.
+constexpr double kEndReach = 6.0;
 
 // Adds a terminal chain from the skeleton point on the end's axis (the inward normal from its centre, within half
 // its radius) nearest the end, else the point nearest that axis (the chain split there, a new junction; a terminal
@@ -172,8 +171,7 @@ SkeletonTree skeleton_tree(const ClosedSurface& closed, const CenterlineOptions&
   // skeleton): finer, for that end's radius.
   std::vector<SurfaceCap> ends = closed.caps;  // the open ends the intake capped, and the ends cut flat
   for (const SurfaceCap& end : flat_ends(closed.mesh, wall)) ends.push_back(end);
-  const std::vector<SurfaceCap> missed =
-      ends_missed(tree, ends, [](const Eigen::Vector3d&, const SurfaceCap& end) { return kEndReach * end.radius; });
+  const std::vector<SurfaceCap> missed = ends_missed(tree, ends, kEndReach);
   if (!missed.empty()) {
     for (const SurfaceCap& end : missed)
       fine = std::min(fine, std::max(2 * M_PI * end.radius / opt.edges_around_thinnest, finest));
@@ -187,10 +185,9 @@ SkeletonTree skeleton_tree(const ClosedSurface& closed, const CenterlineOptions&
   // An end MCF contracts whatever the mesh (a stub about one radius long) still gets its terminal where none lies
   // within SkeletonCleanup::cap_factor of its radii: a chain from the skeleton's nearest point to it, which
   // refinement re-centres like any other.
-  const auto cap_reach = [&](const Eigen::Vector3d&, const SurfaceCap& end) { return cleanup.cap_factor * end.radius; };
   std::vector<char> grafted;
   if (!missed.empty()) {
-    for (const SurfaceCap& end : ends_missed(tree, ends, cap_reach)) graft_end(tree, end, grafted);
+    for (const SurfaceCap& end : ends_missed(tree, ends, cleanup.cap_factor)) graft_end(tree, end, grafted);
     for (const SurfaceCap& end : ends) tree.known_ends.push_back({end.centre, end.radius});
   }
   return tree;

@@ -188,7 +188,7 @@ SkeletonTree skeleton_tree(const ClosedSurface& closed, const CenterlineOptions&
   std::vector<char> grafted;
   if (!missed.empty()) {
     for (const SurfaceCap& end : ends_missed(tree, ends, cleanup.cap_factor)) graft_end(tree, end, grafted);
-    for (const SurfaceCap& end : ends) tree.known_ends.push_back({end.centre, end.radius});
+    tree.known_ends = ends;
   }
   return tree;
 }

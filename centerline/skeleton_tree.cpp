@@ -217,7 +217,7 @@ void cut_cycles(Work& w) {
 
 bool SkeletonTree::at_known_end(const Eigen::Vector3d& p) const {
   return std::any_of(known_ends.begin(), known_ends.end(),
-                     [&](const VesselEnd& e) { return (p - e.centre).norm() < 2.0 * e.radius; });
+                     [&](const SurfaceCap& e) { return (p - e.centre).norm() < 2.0 * e.radius; });
 }
 
 SkeletonTree clean_skeleton(const RawSkeleton& raw, const std::function<double(const Eigen::Vector3d&)>& radius_at,

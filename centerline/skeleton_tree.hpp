@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "centerline/mcf_skeleton.hpp"
+#include "centerline/prepare_surface.hpp"
 
 namespace gw {
 
@@ -14,17 +15,12 @@ struct SkeletonChain {
   std::vector<Eigen::Vector3d> points;   // a ... b, both ends included
 };
 
-// A vessel end known from the surface (a capped open end, a flat end: flat_ends.hpp): an arm ending there is a
-// vessel, never a spur.
-struct VesselEnd {
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  double radius = 0.0;
-};
-
 struct SkeletonTree {
   std::vector<Eigen::Vector3d> nodes;  // key nodes: terminals (1 chain) and junctions (3+)
   std::vector<SkeletonChain> chains;   // no cycles, every node used
-  std::vector<VesselEnd> known_ends;   // set where the first skeleton missed a known end (extract_centerline.cpp)
+  // Vessel ends known from the surface (capped open ends, flat ends: flat_ends.hpp), set where the first skeleton
+  // missed one (extract_centerline.cpp): an arm ending at one is a vessel, never a spur.
+  std::vector<SurfaceCap> known_ends;
   std::vector<int> degree() const;
   // Whether p lies within two radii of a known end (the cap rule of SkeletonCleanup::cap_factor).
   bool at_known_end(const Eigen::Vector3d& p) const;

@@ -217,6 +217,14 @@ STUB_DESCRIPTION = ("Validation arch {base} (anatomies/validation/arches) with i
 SEGMENTATION_STUBS = [("arch_type1", 1), ("arch_type2", 2)]
 
 
+def write_stub(out, row, k, description):
+    """Writes the stub arch of `row` (an ARCHES or VALIDATION_ARCHES entry) with stubs k radii long to `out`."""
+    name, height, tb, tc, ts, _, _ = row
+    spec, info = stub_arch(f"{name}_stub{k}", height, tb, tc, ts, k, description)
+    (out / f"{name}_stub{k}.spec.json").write_text(spec_text(spec))
+    print(f"{name}_stub{k}", json.dumps(info))
+
+
 def spec_text(spec):
     """The committed specs' layout: one line per field, one line per branch."""
     head = ",\n".join(f"  {json.dumps(k)}: {json.dumps(spec[k])}" for k in ("name", "description", "units"))
@@ -229,23 +237,17 @@ if __name__ == "__main__":
     validation = "--validation" in sys.argv[1:]
     if "--stubs" in sys.argv[1:]:
         out = HERE.parent / "validation" / "arches"
-        for name, height, tb, tc, ts, _, _ in VALIDATION_ARCHES:
+        for row in VALIDATION_ARCHES:
             for k in (1, 2, 3):
-                desc = STUB_DESCRIPTION.format(base=name, k=k)
-                spec, info = stub_arch(f"{name}_stub{k}", height, tb, tc, ts, k, desc)
-                (out / f"{name}_stub{k}.spec.json").write_text(spec_text(spec))
-                print(f"{name}_stub{k}", json.dumps(info))
+                write_stub(out, row, k, STUB_DESCRIPTION.format(base=row[0], k=k))
         sys.exit(0)
     out = HERE.parent / "validation" / "arches" if validation else HERE
     out.mkdir(parents=True, exist_ok=True)
     if not validation:  # the segmentation set's stub arches, beside the arches they are cut from
         for base, k in SEGMENTATION_STUBS:
-            name, height, tb, tc, ts, _, _ = next(a for a in ARCHES if a[0] == base)
             desc = STUB_DESCRIPTION.replace("Validation arch {base} (anatomies/validation/arches)",
                                             "Arch {base} of the segmentation-like set").format(base=base, k=k)
-            spec, info = stub_arch(f"{base}_stub{k}", height, tb, tc, ts, k, desc)
-            (out / f"{base}_stub{k}.spec.json").write_text(spec_text(spec))
-            print(f"{base}_stub{k}", json.dumps(info))
+            write_stub(out, next(a for a in ARCHES if a[0] == base), k, desc)
     for name, height, tb, tc, ts, kind, rule in VALIDATION_ARCHES if validation else ARCHES:
         desc = COMMON.format(type=kind, width=WIDTH, height=height, rule=rule)
         spec, info = arch(name, height, tb, tc, ts, desc)

@@ -81,7 +81,8 @@ int check_arrival(const NavigationTask& task, const EpisodeState& s, StepInfo& i
 // must be able to pull out). Returns whether the tip entered a wrong child this step.
 bool observe_wrong_branch(EpisodeState& s, int lost, StepInfo& info);
 
-// The force cost of the step's reward (reward_force_per_N times the peak total wall force, N).
+// The force cost of the step's reward: reward_force_per_N times the newtons by which the step's peak single-node
+// wall force exceeds kRuptureForceN (wall_force.hpp); 0 at or below it.
 double force_cost(const TaskConfig& c, const PhysicsSummary& physics);
 
 // The step's reward before the force cost: Eq. 3 under act/1; under act/2 the push/pull reward (reward.hpp), for

@@ -47,6 +47,7 @@
 #include <string>
 
 #include "task/task_config.hpp"
+#include "task/wall_force.hpp"  // kRuptureForceN
 
 namespace gw {
 
@@ -59,7 +60,7 @@ inline constexpr int kTheta = 0, kThetaPrev = 3, kLambda = 6, kLambdaPrev = 7, k
                      kOmegaSide = 11, kInsertion = 12, kWrongBranch = 13, kTipForce = 14;
 }
 
-inline constexpr double kTipForceScaleN = 1.5;  // tip_force = the tip's wall force / this
+inline constexpr double kTipForceScaleN = kRuptureForceN;  // tip_force = the tip's wall force / this (1.5 N)
 inline constexpr double kTipForceCap = 4.0;     // ... clipped here (6 N)
 
 // Names of the entries, e.g. "theta_t_1", "lambda_prev", "omega".

@@ -3,11 +3,13 @@
 
 #include "task/episode_stages.hpp"
 #include "task/reward.hpp"
+#include "task/wall_force.hpp"
 
 namespace gw {
 
 double force_cost(const TaskConfig& c, const PhysicsSummary& physics) {
-  return c.reward_force_per_N * 1e-3 * physics.peak.total_mN;  // 0: the paper's reward
+  const double over_safe_N = std::max(0.0, 1e-3 * physics.peak.peak_node_mN - kRuptureForceN);
+  return c.reward_force_per_N * over_safe_N;  // 0: the paper's reward
 }
 
 double step_reward(const NavigationTask& task, EpisodeState& s, const StepCommand& command, bool in_wrong_branch) {

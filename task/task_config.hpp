@@ -124,9 +124,11 @@ struct TaskConfig {
   // run's reward). Without it stopping is free (reward.hpp says why that matters).
   double reward_time_per_step = 0.25;
   // --- Force penalty (issue 37 item 4; 0 = the paper's reward, Eq. 3) ---
-  // Each env step's reward loses this times the step's peak total wall force in newtons (StepInfo::
-  // wall_force_peak_total_mN / 1000): a wire pressed on the wall at 1.5 N (the vessel-rupture threshold
-  // the safety figures use) for a step costs 1.5 x this. Off for the paper's column and the shipped actors.
+  // Each env step's reward loses this per newton by which the step's peak single-node wall force (StepInfo::
+  // wall_force_peak_node_mN / 1000) exceeds 1.5 N (kRuptureForceN, the vessel-rupture threshold the safety
+  // figures use): pressing within the safe force is free, a node at 3 N for a step costs 1.5 x this, a jam at
+  // 50 N 48.5 x this. Off for the paper's column and the shipped actors. (Before 2026-12-06: this times the
+  // step's peak total wall force, no threshold; results/generalist/README.md says why it changed.)
   double reward_force_per_N = 0.0;
   // --- Force limit (issue 37; docs/recovery.md "Force limit"; 0 = off: the paper's task, every table row) ---
   // What a clinician does on feeling resistance: stop, let go of the torque, ease back. While the wire presses the

@@ -11,6 +11,11 @@ namespace gw {
 // force is taken over the nodes within this arc of the distal end (the last two 0.5 mm tip elements).
 inline constexpr double kTipForceLengthMm = 1.0;
 
+// Wall forces above this count as unsafe: 1.5 N, the vessel-rupture threshold used in recent autonomous
+// navigation work (the engine's unit is mN). The safety figures, the tip-force observation's scale and the
+// reward's force cost all use it.
+inline constexpr double kRuptureForceN = 1.5;
+
 struct WallForce {
   double peak_node_mN = 0.0;  // the largest |contact_force| of a single node
   double total_mN = 0.0;      // sum over the nodes of |contact_force|

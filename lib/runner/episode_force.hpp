@@ -4,12 +4,9 @@
 #include <nlohmann/json.hpp>
 
 #include "lib/report/trajectory.hpp"
+#include "task/wall_force.hpp"  // kRuptureForceN: peaks above it count as unsafe
 
 namespace gw {
-
-// Peaks above this count as unsafe: 1.5 N, the vessel-rupture threshold used in recent autonomous
-// navigation work (the engine's unit is mN).
-inline constexpr double kRuptureForceN = 1.5;
 
 // Inputs: a trace and the frames (first, last] to take (the env steps that led to frames first+1..last).
 // Output: {"peak_node_N": the largest single-node force, "peak_total_N": the largest total over the

@@ -143,7 +143,7 @@ def test_omega_plane_is_chosen_at_the_server_and_reported(server_bin):
 
 def test_force_cost_is_chosen_at_the_server_and_changes_only_the_reward(server_bin):
     # Same seed, same actions: the observations agree, and the costed reward is lower by the coefficient times
-    # the step's peak total wall force (the info's wall_force_peak_total_mN), never higher.
+    # the newtons by which the step's peak node force (the info's wall_force_peak_node_mN) exceeds 1.5 N, never higher.
     plain = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1})
     costly = GuidewireEnv(anatomies="t1_straight_y", options={"target": 1}, server_args=["--task", '{"reward_force_per_N": 2}'])
     try:
@@ -151,15 +151,15 @@ def test_force_cost_is_chosen_at_the_server_and_changes_only_the_reward(server_b
         assert costly.spec_reply["task"]["reward_force_per_N"] == 2.0
         plain.reset(seed=2)
         costly.reset(seed=2)
-        charged = 0
+        touched = 0
         for _ in range(60):
             a, ra, *_ = plain.step(np.array([0.3], dtype=np.float32))
             b, rb, _, _, info = costly.step(np.array([0.3], dtype=np.float32))
             assert np.array_equal(a, b)
-            force_n = 1e-3 * info["wall_force_peak_total_mN"]
-            assert rb == pytest.approx(ra - 2.0 * force_n, abs=1e-9)
-            charged += force_n > 0
-        assert charged > 0  # the wire touched the wall, so the cost was paid
+            over_safe_n = max(0.0, 1e-3 * info["wall_force_peak_node_mN"] - 1.5)
+            assert rb == pytest.approx(ra - 2.0 * over_safe_n, abs=1e-9)
+            touched += info["wall_force_peak_node_mN"] > 0
+        assert touched > 0  # the wire touched the wall (the cost itself: tests/task/wall_force_test.cpp)
     finally:
         plain.close()
         costly.close()

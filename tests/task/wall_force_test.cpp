@@ -1,9 +1,12 @@
 // Safety figures (issue 37 item 4): the wall force of a step from WireState::contact_force, and the
 // figures StepInfo reports for an env step on a real wall.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "task/episode.hpp"
+#include "task/episode_stages.hpp"
 #include "task/wall_force.hpp"
 
 using Approx = Catch::Detail::Approx;
@@ -88,7 +91,7 @@ TEST_CASE("recovery settings: off by default, checked", "[task][recovery]") {
   CHECK_THROWS_WITH(gw::check_task_config(c), Catch::Contains("recovery_pull_mm_per_s"));
 }
 
-TEST_CASE("force penalty: off by default, and on, the reward loses weight x the step's peak total force in N",
+TEST_CASE("force penalty: off by default, and on, the reward loses weight x the step's peak node force over 1.5 N",
           "[task][force]") {
   gw::TaskConfig plain, penalised;
   CHECK(plain.reward_force_per_N == 0.0);
@@ -100,11 +103,19 @@ TEST_CASE("force penalty: off by default, and on, the reward loses weight x the 
   bool pressed = false;
   for (int k = 0; k < 400 && !sa.done && !pressed; ++k) {
     const gw::StepOutcome oa = gw::step_episode(a, sa, 0.3), ob = gw::step_episode(b, sb, 0.3);
-    REQUIRE(oa.info.wall_force_peak_total_mN == ob.info.wall_force_peak_total_mN);  // same episode
-    CHECK(ob.reward == Approx(oa.reward - 2.0 * 1e-3 * oa.info.wall_force_peak_total_mN).margin(1e-12));
-    pressed = oa.info.wall_force_peak_total_mN > 0;
+    REQUIRE(oa.info.wall_force_peak_node_mN == ob.info.wall_force_peak_node_mN);  // same episode
+    const double over_safe_N = std::max(0.0, 1e-3 * oa.info.wall_force_peak_node_mN - 1.5);
+    CHECK(ob.reward == Approx(oa.reward - 2.0 * over_safe_N).margin(1e-12));
+    pressed = oa.info.wall_force_peak_node_mN > 0;
   }
-  CHECK(pressed);
+  CHECK(pressed);  // the wire touched the wall (below 1.5 N the two rewards are the same)
+  gw::PhysicsSummary physics;
+  for (const auto& [node_mN, cost] : {std::pair{0.0, 0.0}, {1000.0, 0.0}, {1500.0, 0.0}, {3000.0, 3.0}, {51500.0, 100.0}}) {
+    physics.peak.peak_node_mN = node_mN;
+    physics.peak.total_mN = 10 * node_mN;  // the total is not what is charged
+    CHECK(gw::force_cost(penalised, physics) == Approx(cost).margin(1e-12));
+    CHECK(gw::force_cost(plain, physics) == 0.0);
+  }
   gw::TaskConfig bad;
   bad.reward_force_per_N = -1;
   CHECK_THROWS_WITH(gw::check_task_config(bad), Catch::Contains("reward_force_per_N"));

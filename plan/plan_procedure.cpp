@@ -232,7 +232,7 @@ std::string why_none(const SearchStats& strict, const SearchStats* procedure, lo
 
 // The plan "unreachable" because the course narrows below the wire somewhere, or none.
 std::optional<ProcedurePlan> too_narrow(const NavigationTask& task, int anatomy, int target_id, const EpisodeState& root) {
-  const double wire_radius = 0.5 * task.wire.params.diameter_mm;
+  const double wire_radius = 0.5 * wire_of(task, anatomy).params.diameter_mm;
   const auto passage = narrowest_passage(task.anatomies[static_cast<std::size_t>(anatomy)].graph, target_id, wire_radius);
   if (!passage) return std::nullopt;
   ProcedurePlan plan;

@@ -36,13 +36,13 @@ PhysicsSummary advance_physics(const NavigationTask& task, EpisodeState& s, cons
   const auto start = std::chrono::steady_clock::now();
   for (int k = 0; k < c.frame_skip; ++k) {
     const Control applied = limit_force(c, s, control, out.held);
-    const StepReport report = step(task.wire, anatomy.scene.get(), applied, s.wire);
+    const StepReport report = step(wire_of(task, s.anatomy), anatomy.scene.get(), applied, s.wire);
     out.contacts = report.contacts;
     if (!report.ok) {
       out.problem = "physics diverged: " + report.problem;
       break;
     }
-    const WallForce f = wall_force(task.wire, s.wire);
+    const WallForce f = wall_force(wire_of(task, s.anatomy), s.wire);
     s.force.last_peak_node_mN = f.peak_node_mN;
     out.peak.peak_node_mN = std::max(out.peak.peak_node_mN, f.peak_node_mN);
     out.peak.total_mN = std::max(out.peak.total_mN, f.total_mN);

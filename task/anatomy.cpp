@@ -83,12 +83,12 @@ std::vector<AnatomySource> resolve_anatomy_sources(const std::string& spec, cons
       if (!fs::exists(truth))
         throw std::runtime_error(truth.string() + ": centerline truth file does not exist (needed beside " +
                                  mesh.string() + ")");
-      out.push_back({stem, mesh.string(), truth.string()});
+      out.push_back({stem, mesh.string(), truth.string(), ""});
       continue;
     }
     if (ends_with(item, ".json")) {  // another anatomy index (a generated pool): every anatomy it lists
       if (!fs::exists(item)) throw std::runtime_error(item + ": anatomy index does not exist");
-      for (const AnatomyEntry& e : read_anatomy_index(item)) out.push_back({e.name, e.mesh, e.truth});
+      for (const AnatomyEntry& e : read_anatomy_index(item)) out.push_back({e.name, e.mesh, e.truth, e.wire});
       continue;
     }
     if (!index_read) {
@@ -98,7 +98,7 @@ std::vector<AnatomySource> resolve_anatomy_sources(const std::string& spec, cons
     bool found = false;
     for (const AnatomyEntry& e : index) {
       if (e.set == item || e.name == item) {
-        out.push_back({e.name, e.mesh, e.truth});
+        out.push_back({e.name, e.mesh, e.truth, e.wire});
         found = true;
       }
     }
@@ -109,10 +109,21 @@ std::vector<AnatomySource> resolve_anatomy_sources(const std::string& spec, cons
   return out;
 }
 
+std::shared_ptr<const WireParams> load_source_wire(const AnatomySource& source) {
+  if (source.wire.empty()) return nullptr;
+  try {
+    return std::make_shared<const WireParams>(load_wire_params(source.wire));
+  } catch (const std::exception& e) {
+    throw std::runtime_error("anatomy '" + source.name + "': its wire " + source.wire + ": " + e.what());
+  }
+}
+
 std::vector<Anatomy> load_anatomies(const std::string& spec, const std::string& index_path) {
   std::vector<Anatomy> out;
-  for (const AnatomySource& s : resolve_anatomy_sources(spec, index_path))
+  for (const AnatomySource& s : resolve_anatomy_sources(spec, index_path)) {
     out.push_back(load_anatomy(s.name, s.mesh, s.truth));
+    out.back().wire = load_source_wire(s);
+  }
   return out;
 }
 

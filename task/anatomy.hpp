@@ -8,6 +8,7 @@
 
 #include "base/graph/centerline_graph.hpp"
 #include "engine/scene/vessel_scene.hpp"
+#include "engine/wire/wire_params.hpp"
 #include "task/polyline.hpp"
 
 namespace gw {
@@ -18,6 +19,9 @@ struct Anatomy {
   CenterlineGraph graph;
   std::vector<Polyline> branch_lines;          // branch_lines[b] = graph.branches[b].points
   std::shared_ptr<const VesselScene> scene;    // nullptr = free space (no wall)
+  // The wire this anatomy is navigated with when its index entry names one (an arch pool's aortic wire);
+  // nullptr = the run's wire (the apps' --wire). make_navigation_task builds one wire model per anatomy.
+  std::shared_ptr<const WireParams> wire;
 };
 
 // Wraps a graph (and optionally a scene). Throws std::invalid_argument when the graph has no
@@ -30,6 +34,7 @@ Anatomy load_anatomy(const std::string& name, const std::string& mesh_path, cons
 
 struct AnatomySource {
   std::string name, mesh, truth;  // absolute or working-directory-relative paths
+  std::string wire;               // the index entry's wire parameter JSON, "" = the run's wire
 };
 
 // Resolves `spec`, a comma-separated list whose items are each
@@ -41,7 +46,12 @@ struct AnatomySource {
 // Throws std::runtime_error naming the item that matches nothing (and the index file).
 std::vector<AnatomySource> resolve_anatomy_sources(const std::string& spec, const std::string& index_path);
 
-// resolve_anatomy_sources + load_anatomy for each.
+// The wire an index entry names (load_wire_params), nullptr when it names none. Throws std::runtime_error naming
+// the anatomy and the file when it cannot be loaded.
+std::shared_ptr<const WireParams> load_source_wire(const AnatomySource& source);
+
+// resolve_anatomy_sources + load_anatomy for each, with the wire an index entry names (load_wire_params;
+// throws std::runtime_error naming the anatomy and the file when it cannot be loaded).
 std::vector<Anatomy> load_anatomies(const std::string& spec, const std::string& index_path);
 
 // anatomies/index.json of the source tree this library was built from,

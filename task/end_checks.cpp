@@ -57,7 +57,7 @@ void check_strict_end(const NavigationTask& task, EpisodeState& s, bool stall, S
   if (!out.terminated) {
     out.info.step_limit = s.steps >= (s.procedure.strict_over ? s.procedure.max_steps : s.max_steps);
     out.info.stuck = stall;
-    out.info.wire_exhausted = s.wire.inserted_length_mm >= task.wire.params.length_mm - c.wire_reserve_mm;
+    out.info.wire_exhausted = s.wire.inserted_length_mm >= wire_of(task, s.anatomy).params.length_mm - c.wire_reserve_mm;
     out.truncated = out.info.step_limit || out.info.stuck || out.info.wire_exhausted;
   }
   out.info.strict_end = !s.procedure.strict_over && (out.terminated || out.truncated);

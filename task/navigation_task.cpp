@@ -9,9 +9,10 @@ NavigationTask make_navigation_task(const TaskConfig& config, const WireParams& 
   if (anatomies.empty()) throw std::invalid_argument("navigation task needs at least one anatomy");
   NavigationTask task;
   task.config = config;
-  task.wire = make_wire_model(wire, config.dt_s);
+  const WireModel run_wire = make_wire_model(wire, config.dt_s);
   task.anatomies = std::move(anatomies);
   for (const Anatomy& a : task.anatomies) {
+    task.wires.push_back(a.wire ? make_wire_model(*a.wire, config.dt_s) : run_wire);
     std::vector<Course> courses;
     for (const Terminal& t : a.graph.targets) {
       try {

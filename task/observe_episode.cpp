@@ -17,7 +17,7 @@ void observe_episode(const NavigationTask& task, EpisodeState& s, bool first) {
   if (motion.points > 0)  // a moving wall: the course where the vessel is now (course_shape.hpp)
     course_shape_at(task.anatomies[static_cast<size_t>(s.anatomy)], motion, c, s.target_id, s.wire.time, s.shape);
   const Course& course = current_course(s);
-  sample_tip(task.wire, s.wire, c.tip_sample_spacing_mm, s.samples);
+  sample_tip(wire_of(task, s.anatomy), s.wire, c.tip_sample_spacing_mm, s.samples);
   const Eigen::Vector3d tip = s.samples.position[0];
 
   Observation& o = s.obs;
@@ -72,7 +72,7 @@ void observe_episode(const NavigationTask& task, EpisodeState& s, bool first) {
     const CourseBifurcation& b = course.bifurcations[k];
     const Eigen::Vector3d kappa = curvature_from_tangents(
         s.samples.tangent[0], s.samples.tangent[kTipSampleCount - 1], (kTipSampleCount - 1) * c.tip_sample_spacing_mm);
-    const double rest = task.wire.params.tip_curvature_per_mm;
+    const double rest = wire_of(task, s.anatomy).params.tip_curvature_per_mm;
     const OmegaReading reading = bifurcation_omega(b, kappa, rest, c.observation.junctions);
     omega = reading.omega;
     side = reading.side;

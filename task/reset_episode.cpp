@@ -58,7 +58,7 @@ EpisodeState reset_episode(const NavigationTask& task, int anatomy, int target_i
   const Eigen::Vector3d e2 = d.cross(e1);
   const Eigen::Vector3d axis = std::cos(azimuth) * e1 + std::sin(azimuth) * e2;
   const Eigen::Vector3d direction = Eigen::AngleAxisd(s.start_tilt_rad, axis) * d;
-  s.wire = make_initial_state(task.wire, g.inlet.position, direction, s.start_rotation_rad, c.initial_insertion_mm);
+  s.wire = make_initial_state(wire_of(task, a), g.inlet.position, direction, s.start_rotation_rad, c.initial_insertion_mm);
 
   const double advance = env_dt(c) * c.push_mm_per_s;
   s.max_steps = c.max_steps > 0 ? c.max_steps

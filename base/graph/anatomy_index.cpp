@@ -27,6 +27,7 @@ std::vector<AnatomyEntry> read_anatomy_index(const std::string& index_path, cons
       e.mesh = resolve("mesh", true);
       e.truth = resolve("truth", true);
       e.spec = resolve("spec", false);
+      e.wire = resolve("wire", false);
       out.push_back(std::move(e));
     } catch (const std::exception& ex) {
       throw std::runtime_error(index_path + ": bad anatomy entry: " + ex.what());

@@ -10,9 +10,12 @@ namespace gw {
 struct AnatomyEntry {
   std::string name, set;
   std::string mesh, truth, spec;  // paths ("" when the index has none); read_anatomy_index makes them absolute
+  std::string wire;               // the wire parameter JSON this anatomy is navigated with ("": the run's wire);
+                                  // a pool of aortic arches names the aortic wire (docs/anatomy_pool.md)
 };
 
-// Reads `index_path`: {"anatomies": [{name, set, mesh, truth, spec}, ...]} or the bare list. Relative
+// Reads `index_path`: {"anatomies": [{name, set, mesh, truth, spec, wire}, ...]} or the bare list (spec and wire
+// optional). Relative
 // paths are resolved against `root` (default: the folder above the index's folder, the repository root
 // for anatomies/index.json). Files are not checked here (loading one names it when it is missing).
 // Throws std::runtime_error "<index_path>: <problem>" for an unreadable or malformed index or an entry

@@ -175,6 +175,7 @@ std::vector<Anatomy> load_row_anatomies(const EvaluationRow& row, const Evaluati
     load.inlet = read_centerline(src.at(0).truth).inlet.position;
     NavigationAnatomy nav = load_navigation_anatomy(src.at(0).mesh, load);
     nav.anatomy.name = src.at(0).name;  // the index's name, or a pool row's file stem
+    nav.anatomy.wire = load_source_wire(src.at(0));  // an arch pool's aortic wire; nullptr: the run's
     if (row.heart_rate_bpm > 0) {  // a beating row: the anatomy's own field at the row's rate
       HeartSettings heart;
       heart.heart_rate_bpm = row.heart_rate_bpm;

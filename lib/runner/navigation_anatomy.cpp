@@ -112,6 +112,7 @@ std::vector<Anatomy> load_indexed_anatomies(const std::string& spec, const std::
     NavigationAnatomy nav = load_navigation_anatomy(s.mesh, options);
     for (const std::string& r : nav.repairs) std::cerr << "repaired: " << s.mesh << ": " << r << "\n";
     nav.anatomy.name = s.name;
+    nav.anatomy.wire = load_source_wire(s);
     out.push_back(std::move(nav.anatomy));
   }
   return out;

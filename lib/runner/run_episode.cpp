@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -32,7 +33,7 @@ void record_frame(const NavigationTask& task, const EpisodeState& s, const StepI
   if (task.config.recovery_attempts > 0) trace.retracting.push_back(info.retracting);
   if (task.config.force_limit_N > 0) trace.push_held_s.push_back(info.push_held_steps * task.config.dt_s);
   if (options.wire_shape_every > 0 && frame % options.wire_shape_every == 0) {
-    trace.wire_shapes.push_back(inserted_node_positions(task.wire, s.wire));
+    trace.wire_shapes.push_back(inserted_node_positions(wire_of(task, s.anatomy), s.wire));
     trace.wire_shape_frame.push_back(frame);
   }
 }
@@ -107,7 +108,7 @@ EpisodeTrace run_pass(const NavigationTask& task, int anatomy, int target_id, st
     }
   }
   if ((trace.wire_shape_frame.empty() || trace.wire_shape_frame.back() != frame)) {
-    trace.wire_shapes.push_back(inserted_node_positions(task.wire, s.wire));
+    trace.wire_shapes.push_back(inserted_node_positions(wire_of(task, s.anatomy), s.wire));
     trace.wire_shape_frame.push_back(frame);
   }
   inserted_mm = s.wire.inserted_length_mm;
@@ -123,8 +124,8 @@ EpisodeTrace run_episode(const NavigationTask& task, int anatomy, int target_id,
   if (!options.reshaped) return trace;
   // Tip reshape: a procedure that ended short of the target (a physics failure is not a procedure's end)
   // is withdrawn at the recovery pull speed and navigated again with the reshaped tip.
-  trace.reshape_tip_per_mm = options.reshaped->wire.params.tip_curvature_per_mm;
-  trace.reshape_tip_length_mm = options.reshaped->wire.params.tip_length_mm;
+  trace.reshape_tip_per_mm = wire_of(*options.reshaped, anatomy).params.tip_curvature_per_mm;
+  trace.reshape_tip_length_mm = wire_of(*options.reshaped, anatomy).params.tip_length_mm;
   const std::string& end = procedure_outcome(trace);
   if (end == "success" || end == "diverged") return trace;
   trace.reshape_withdrawal_s =
@@ -138,16 +139,20 @@ NavigationTask make_reshaped_task(const NavigationTask& task, double tip_curvatu
   if (!(tip_curvature_per_mm > 0) || !std::isfinite(tip_curvature_per_mm))
     throw std::invalid_argument("tip reshape: the curvature must be a number above 0 (1/mm), got " +
                                 std::to_string(tip_curvature_per_mm));
-  WireParams wire = task.wire.params;
-  if (tip_length_mm != 0.0) {
-    if (!(tip_length_mm > 0) || !std::isfinite(tip_length_mm) || tip_length_mm >= wire.length_mm)
-      throw std::invalid_argument("tip reshape: the tip length must be 0 (the wire's own) or a number above 0 (mm) "
-                                  "shorter than the wire (" + std::to_string(wire.length_mm) + " mm), got " +
-                                  std::to_string(tip_length_mm));
-    wire.tip_length_mm = tip_length_mm;
+  std::vector<Anatomy> anatomies = task.anatomies;  // each keeps its scene; its wire becomes the reshaped one
+  for (std::size_t a = 0; a < anatomies.size(); ++a) {
+    WireParams wire = task.wires[a].params;
+    if (tip_length_mm != 0.0) {
+      if (!(tip_length_mm > 0) || !std::isfinite(tip_length_mm) || tip_length_mm >= wire.length_mm)
+        throw std::invalid_argument("tip reshape: the tip length must be 0 (the wire's own) or a number above 0 "
+                                    "(mm) shorter than the wire (" + std::to_string(wire.length_mm) + " mm), got " +
+                                    std::to_string(tip_length_mm));
+      wire.tip_length_mm = tip_length_mm;
+    }
+    wire.tip_curvature_per_mm = tip_curvature_per_mm;
+    anatomies[a].wire = std::make_shared<const WireParams>(wire);
   }
-  wire.tip_curvature_per_mm = tip_curvature_per_mm;
-  return make_navigation_task(task.config, wire, task.anatomies);
+  return make_navigation_task(task.config, task.wires.front().params, std::move(anatomies));
 }
 
 }  // namespace gw

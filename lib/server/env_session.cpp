@@ -203,7 +203,8 @@ std::string spec_json(const NavigationTask& task) {
   for (size_t a = 0; a < task.anatomies.size(); ++a) {
     anatomies.push_back({{"name", task.anatomies[a].name},
                          {"index", a},
-                         {"targets", task.courses[a].size()}});
+                         {"targets", task.courses[a].size()},
+                         {"wire_diameter_mm", wire_of(task, static_cast<int>(a)).params.diameter_mm}});
     const auto& scene = task.anatomies[a].scene;  // a beating wall (--heart-rate): its rate
     if (scene && scene->motion) anatomies.back()["heart_rate_bpm"] = scene->motion->heart_rate_bpm;
   }

@@ -52,6 +52,53 @@ def test_arches_keep_the_great_vessels_in_order(tmp_path):
                          "left_subclavian"]
 
 
+def test_a_mixed_pool_names_the_aortic_wire_for_its_arches_only(tmp_path):
+    out, _, index = specs(tmp_path, 6, 12)
+    kinds = {e["set"] for e in index}
+    assert kinds == {"coronary", "arch"}  # 12 draws of two kinds: both present for this seed
+    for e in index:
+        if e["set"] == "arch":
+            wire = out.parent / e["wire"]
+            shipped = guidewire_nav.REPO_ROOT / "engine" / "wire" / "aortic_035_angled.json"
+            assert wire.read_bytes() == shipped.read_bytes()
+        else:
+            assert "wire" not in e  # the run's wire (the coronary wire by default)
+
+
+def test_varied_wires_are_drawn_per_anatomy_within_their_ranges_and_leave_the_specs_alone(tmp_path):
+    out = tmp_path / "varied"
+    assert anatomy_pool.main(["--out", str(out), "--count", "12", "--seed", "6", "--kinds", "coronary,arch",
+                              "--specs-only", "--vary-wires"]) == 0
+    index = json.loads((out / "index.json").read_text())["anatomies"]
+    _, plain_specs, _ = specs(tmp_path, 6, 12)
+    assert [json.loads((out.parent / e["spec"]).read_text()) for e in index] == plain_specs  # same anatomies
+    wires = [json.loads((out.parent / e["wire"]).read_text()) for e in index]
+    assert len({w["friction"] for w in wires}) == len(wires)  # one draw each
+    for e, w in zip(index, wires):
+        base = json.loads((guidewire_nav.REPO_ROOT / "engine" / "wire" / anatomy_pool.BASE_WIRES[e["set"]]).read_text())
+        r = anatomy_pool.WIRE_RANGES[e["set"]]
+        assert r["tip_length_mm"][0] <= w["tip_length_mm"] <= r["tip_length_mm"][1]
+        bend_deg = np.degrees(w["tip_curvature_per_mm"] * w["tip_length_mm"])
+        assert r["tip_bend_deg"][0] - 0.1 <= bend_deg <= r["tip_bend_deg"][1] + 0.1
+        assert r["friction"][0] <= w["friction"] <= r["friction"][1]
+        assert w["tip_length_mm"] < w["fine_region_mm"]  # the bent length on the fine tip elements
+        assert {k: v for k, v in w.items() if k not in ("tip_length_mm", "tip_curvature_per_mm", "friction", "comment")} \
+            == {k: v for k, v in base.items() if k not in ("tip_length_mm", "tip_curvature_per_mm", "friction", "comment")}
+    again = tmp_path / "again" / "varied"
+    assert anatomy_pool.main(["--out", str(again), "--count", "12", "--seed", "6", "--kinds", "coronary,arch",
+                              "--specs-only", "--vary-wires"]) == 0
+    assert [(again / "wires" / f"{e['name']}.json").read_text() for e in index] == \
+        [(out / "wires" / f"{e['name']}.json").read_text() for e in index]  # same seed, same wires
+    if guidewire_nav.app_path("guidewire-server").is_file():  # the engine takes a drawn wire
+        from guidewire_nav.env import GuidewireEnv
+        env = GuidewireEnv(anatomies="t1_straight_y", server_args=["--wire", str(out.parent / index[0]["wire"])])
+        try:
+            assert env.spec_reply["anatomies"][0]["wire_diameter_mm"] == wires[0]["diameter_mm"]
+            env.reset(seed=0)
+        finally:
+            env.close()
+
+
 def test_a_bad_kind_is_refused_by_name(tmp_path, capsys):
     with pytest.raises(SystemExit) as e:
         anatomy_pool.main(["--out", str(tmp_path), "--count", "1", "--seed", "0", "--kinds", "coronary,vein"])
@@ -84,6 +131,32 @@ def test_a_meshed_pool_is_served_by_its_index(tmp_path):
     bad = subprocess.run([str(server), "--port", "0", "--anatomies", str(tmp_path / "missing.json")],
                          capture_output=True, text=True, timeout=60)
     assert bad.returncode != 0 and "missing.json" in bad.stderr
+
+
+def test_one_server_serves_each_anatomy_with_the_wire_its_index_names(tmp_path):
+    if not guidewire_nav.app_path("guidewire-server").is_file():
+        pytest.skip("guidewire-server not built; set GW_BUILD_DIR")
+    root = guidewire_nav.REPO_ROOT
+    rows = []
+    for name, wire in [("t1_straight_y", "aortic_035_angled.json"), ("t2_curved_straight_exit", None)]:
+        stem = root / "anatomies" / "train" / name / name
+        rows.append({"name": name, "mesh": f"{stem}.stl", "truth": f"{stem}.truth.json"})
+        if wire:
+            rows[-1]["wire"] = str(root / "engine" / "wire" / wire)
+    (tmp_path / "mixed").mkdir()
+    index = tmp_path / "mixed" / "index.json"
+    index.write_text(json.dumps({"anatomies": rows}))
+    from guidewire_nav.env import GuidewireEnv
+    env = GuidewireEnv(anatomies=str(index))
+    try:
+        wires = {a["name"]: a["wire_diameter_mm"] for a in env.spec_reply["anatomies"]}
+        assert wires == {"t1_straight_y": 0.889, "t2_curved_straight_exit": pytest.approx(0.3556, abs=1e-4)}
+        for seed in range(4):  # episodes on both anatomies step without a physics problem
+            env.reset(seed=seed)
+            _, _, _, _, info = env.step(np.array([0.0], dtype=np.float32))
+            assert "problem" not in info
+    finally:
+        env.close()
 
 
 def test_evaluate_takes_a_pool_as_a_row(tmp_path):

@@ -48,8 +48,8 @@ void require_same_frames(const gw::EpisodeTrace& a, const gw::EpisodeTrace& b) {
 TEST_CASE("reshape: a lost procedure is withdrawn and the reshaped tip reaches the target", "[runner][reshape]") {
   const gw::NavigationTask task = pl_task();
   const gw::NavigationTask reshaped = gw::make_reshaped_task(task, 0.3);
-  CHECK(reshaped.wire.params.tip_curvature_per_mm == 0.3);
-  CHECK(reshaped.wire.params.tip_length_mm == task.wire.params.tip_length_mm);
+  CHECK(reshaped.wires[0].params.tip_curvature_per_mm == 0.3);
+  CHECK(reshaped.wires[0].params.tip_length_mm == task.wires[0].params.tip_length_mm);
   gw::TraceOptions plain, with;
   with.reshaped = &reshaped;
   auto c0 = gw::make_scripted_omega_controller(), c1 = gw::make_scripted_omega_controller();
@@ -132,8 +132,8 @@ TEST_CASE("reshape: the wire's own curvature over a longer tip reaches the targe
   // wire's own tip goes the wrong way, the same curvature bent over 9 mm gets in.
   const gw::NavigationTask task = pl_task();
   const gw::NavigationTask longer = gw::make_reshaped_task(task, 0.2, 9.0);
-  CHECK(longer.wire.params.tip_curvature_per_mm == 0.2);
-  CHECK(longer.wire.params.tip_length_mm == 9.0);
+  CHECK(longer.wires[0].params.tip_curvature_per_mm == 0.2);
+  CHECK(longer.wires[0].params.tip_length_mm == 9.0);
   gw::TraceOptions with;
   with.reshaped = &longer;
   auto c = gw::make_scripted_omega_controller();
@@ -150,7 +150,7 @@ TEST_CASE("reshape: the wire's own curvature over a longer tip reaches the targe
 
 TEST_CASE("reshape: the tip length must be 0 or a number above 0 shorter than the wire", "[runner][reshape]") {
   const gw::NavigationTask task = pl_task();
-  CHECK(gw::make_reshaped_task(task, 0.3, 0.0).wire.params.tip_length_mm == task.wire.params.tip_length_mm);
-  for (double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(), task.wire.params.length_mm})
+  CHECK(gw::make_reshaped_task(task, 0.3, 0.0).wires[0].params.tip_length_mm == task.wires[0].params.tip_length_mm);
+  for (double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(), task.wires[0].params.length_mm})
     CHECK_THROWS_WITH(gw::make_reshaped_task(task, 0.3, bad), Catch::Contains("tip reshape: the tip length must be"));
 }

@@ -4,6 +4,8 @@
 #include <fstream>
 
 #include "task/anatomy.hpp"
+#include "task/episode.hpp"
+#include "task/navigation_task.hpp"
 
 namespace fs = std::filesystem;
 
@@ -83,4 +85,42 @@ TEST_CASE("anatomy: a training anatomy loads with its scene and branch polylines
   gw::CenterlineGraph empty = a.graph;
   empty.targets.clear();
   CHECK_THROWS_WITH(gw::make_anatomy("e", empty, nullptr), Catch::Contains("no targets"));
+}
+
+TEST_CASE("anatomy sources: an index entry's wire is the wire that anatomy is navigated with", "[task][anatomy]") {
+  // A pool mixing anatomies of two wires (an arch pool names the aortic wire): one task, one wire model each.
+  const fs::path d = scratch_dir("wire_index");
+  fs::create_directories(d / "pool" / "a");
+  fs::copy_file(kT1 + ".stl", d / "pool" / "a" / "one.stl");
+  fs::copy_file(kT1 + ".truth.json", d / "pool" / "a" / "one.truth.json");
+  fs::copy_file(std::string(GW_SOURCE_DIR) + "/engine/wire/aortic_035_angled.json", d / "pool" / "a" / "wire.json");
+  std::ofstream(d / "pool" / "index.json")
+      << R"({"anatomies": [{"name": "one", "set": "a", "mesh": "pool/a/one.stl", "truth": "pool/a/one.truth.json",
+                             "wire": "pool/a/wire.json"},
+                            {"name": "two", "set": "a", "mesh": "pool/a/one.stl", "truth": "pool/a/one.truth.json"}]})";
+  const std::string index = (d / "pool" / "index.json").string();
+  const auto sources = gw::resolve_anatomy_sources(index, kIndex);
+  REQUIRE(sources.size() == 2);
+  CHECK(sources[0].wire == (d / "pool" / "a" / "wire.json").string());
+  CHECK(sources[1].wire.empty());
+  const std::vector<gw::Anatomy> anatomies = gw::load_anatomies(index, kIndex);
+  REQUIRE(anatomies[0].wire);
+  CHECK(anatomies[0].wire->diameter_mm == 0.889);
+  CHECK_FALSE(anatomies[1].wire);
+  const gw::NavigationTask task = gw::make_navigation_task(gw::TaskConfig{}, gw::default_wire_params(), anatomies);
+  REQUIRE(task.wires.size() == 2);
+  CHECK(gw::wire_of(task, 0).params.diameter_mm == 0.889);
+  CHECK(gw::wire_of(task, 1).params.diameter_mm == gw::default_wire_params().diameter_mm);
+  CHECK(gw::wire_of(task, 0).nodes != gw::wire_of(task, 1).nodes);  // 450 mm against the coronary wire's length
+  for (int a : {0, 1}) {  // an episode on each anatomy starts its own wire, and steps it
+    gw::EpisodeState s = gw::reset_episode(task, a, 1, 7);
+    CHECK(static_cast<int>(s.wire.x.size()) == gw::wire_of(task, a).nodes);
+    CHECK(gw::step_episode(task, s, 0.0).info.problem.empty());
+  }
+  // A wire the index names that cannot be loaded: an error naming the anatomy and the file.
+  std::ofstream(d / "pool" / "bad.json")
+      << R"({"anatomies": [{"name": "three", "mesh": "pool/a/one.stl", "truth": "pool/a/one.truth.json",
+                             "wire": "pool/a/no_such_wire.json"}]})";
+  CHECK_THROWS_WITH(gw::load_anatomies((d / "pool" / "bad.json").string(), kIndex),
+                    Catch::Contains("'three'") && Catch::Contains("no_such_wire.json"));
 }

@@ -17,7 +17,7 @@ const std::string kIndex = std::string(GW_SOURCE_DIR) + "/anatomies/index.json";
 
 TEST_CASE("wall force: the largest node, the sum of magnitudes and the distal 1 mm", "[task][force]") {
   gw::NavigationTask task = gw::make_navigation_task({}, gw::default_wire_params(), gw::load_anatomies("train", kIndex));
-  const gw::WireModel& model = task.wire;
+  const gw::WireModel& model = gw::wire_of(task, 0);
   gw::WireState s = gw::make_initial_state(model, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), 0.0, 50.0);
   CHECK(gw::wall_force(model, s).total_mN == 0.0);
   const int n = model.nodes;

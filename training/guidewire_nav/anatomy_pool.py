@@ -14,7 +14,8 @@ written are kept) and the same seed gives the same specs. What is drawn (docs/an
   radii tapering from 1.6-2.2 mm to distal ends of 0.3-0.9 mm, and a cardiac deformation at a random phase in
   three of ten;
 - aortic arches of Types I-III (anatomies/segmentation/make_arch_specs.py's construction with a random height and
-  great-vessel angles), entered from the descending aorta.
+  great-vessel angles), entered from the descending aorta, with the 0.035" aortic wire (its JSON copied to
+  OUT/wires/ and named by each arch's index entry: one server serves a mixed pool, each anatomy with its wire).
 A drawn tree whose branches come closer than their radii plus 0.6 mm (away from their junction) is drawn again,
 and so is one that anatomy-gen refuses (redraw k of sample i from (S, i, k), named as before; --specs-only writes
 first draws, unchecked). An anatomy already meshed keeps its spec.
@@ -24,6 +25,7 @@ import argparse
 import importlib.util
 import json
 import math
+import shutil
 import subprocess
 import sys
 from concurrent.futures import ThreadPoolExecutor
@@ -36,6 +38,16 @@ from guidewire_nav.heart_walk import STEP_MM, on_surface, rotate, spec_branch, s
 
 REPO = Path(__file__).resolve().parents[2]
 KINDS = ("coronary", "arch")
+KIND_WIRES = {"arch": "aortic_035_angled.json"}  # the wire a kind is navigated with, when not the run's (engine/wire/)
+BASE_WIRES = {"coronary": "coronary_014.json", **KIND_WIRES}  # --vary-wires: each kind's wire before the draw
+# --vary-wires: what a clinician changes from case to case on the same wire model, drawn per anatomy. Tip: shaped
+# by hand, 3-9 mm bent 40-100 degrees on a coronary wire (the shipped one: 6 mm, 69), 6-14 mm bent 30-60 degrees
+# on the angled aortic wire (10 mm, 45); the bent length stays within the wire's fine tip elements. Friction:
+# 0.05-0.15 on the coronary wire (0.1), 0.03-0.08 on the hydrophilic aortic one (0.05). Assumed ranges, not
+# measured (docs/anatomy_pool.md).
+WIRE_RANGES = {"coronary": {"tip_length_mm": (3, 9), "tip_bend_deg": (40, 100), "friction": (0.05, 0.15)},
+               "arch": {"tip_length_mm": (6, 14), "tip_bend_deg": (30, 60), "friction": (0.03, 0.08)}}
+WIRE_STREAM = 7  # the wire of sample i of seed S is drawn from (S, i, WIRE_STREAM, 0): apart from its spec's draws
 MAX_TARGETS = 8
 MAX_REDRAWS = 5  # draws of one sample after anatomy-gen refused its spec
 
@@ -181,11 +193,39 @@ def sample_spec(seed, index, kinds, redraw=0):
     return kind, spec
 
 
-def write_index(out, entries):
-    """OUT/index.json in anatomies/index.json's format, paths relative to OUT's parent."""
+def drawn_wire(seed, name, kind):
+    """--vary-wires: the kind's shipped wire with its tip length, tip bend and friction drawn for sample `name`."""
+    wire = json.loads((REPO / "engine" / "wire" / BASE_WIRES[kind]).read_text())
+    rng = np.random.default_rng([seed, int(name.rsplit("_", 1)[1]), WIRE_STREAM, 0])
+    r = WIRE_RANGES[kind]
+    length = rng.uniform(*r["tip_length_mm"])
+    bend = math.radians(rng.uniform(*r["tip_bend_deg"]))
+    wire.update(tip_length_mm=round(length, 3), tip_curvature_per_mm=round(bend / length, 5),
+                friction=round(rng.uniform(*r["friction"]), 4))
+    wire["comment"] = (f"Drawn by gw-anatomy-pool --vary-wires for {name}: {BASE_WIRES[kind]} with the tip bent "
+                       f"{math.degrees(bend):.0f} degrees over {length:.1f} mm and friction {wire['friction']}.")
+    return wire
+
+
+def write_index(out, entries, seed=0, vary_wires=False):
+    """OUT/index.json in anatomies/index.json's format, paths relative to OUT's parent. A kind with its own wire
+    (KIND_WIRES: the aortic arches') gets that wire's JSON copied to OUT/wires/ and named by its entries, so that
+    one server serves a pool of coronary trees and arches, each with its wire; with `vary_wires` every entry names
+    its own drawn wire, OUT/wires/<name>.json."""
     rel = out.name
-    rows = [{"name": n, "set": k, "mesh": f"{rel}/{k}/{n}/{n}.stl", "truth": f"{rel}/{k}/{n}/{n}.truth.json",
-             "spec": f"{rel}/{k}/{n}/{n}.spec.json"} for k, n in entries]
+    rows = []
+    for k, n in entries:
+        row = {"name": n, "set": k, "mesh": f"{rel}/{k}/{n}/{n}.stl", "truth": f"{rel}/{k}/{n}/{n}.truth.json",
+               "spec": f"{rel}/{k}/{n}/{n}.spec.json"}
+        if vary_wires or k in KIND_WIRES:
+            (out / "wires").mkdir(parents=True, exist_ok=True)
+            file = f"{n}.json" if vary_wires else KIND_WIRES[k]
+            if vary_wires:
+                (out / "wires" / file).write_text(json.dumps(drawn_wire(seed, n, k), indent=1) + "\n")
+            else:
+                shutil.copyfile(REPO / "engine" / "wire" / file, out / "wires" / file)
+            row["wire"] = f"{rel}/wires/{file}"
+        rows.append(row)
     (out / "index.json").write_text(json.dumps({"anatomies": rows}, indent=1) + "\n")
 
 
@@ -206,10 +246,12 @@ def parse_args(argv=None):
     p.add_argument("--count", type=int, required=True, help="number of anatomies")
     p.add_argument("--seed", type=int, required=True, help="pool seed: sample i is drawn from (seed, i)")
     p.add_argument("--kinds", default="coronary",
-                   help="comma list of: coronary, arch (an arch pool is served with the aortic wire)")
+                   help="comma list of: coronary, arch (an arch's index entry names the aortic wire)")
     p.add_argument("--jobs", type=int, default=1, help="anatomy-gen processes at once")
     p.add_argument("--anatomy-gen", default=None, help="the anatomy-gen binary (default: $GW_BUILD_DIR/apps)")
     p.add_argument("--specs-only", action="store_true", help="write the specs and index, mesh nothing")
+    p.add_argument("--vary-wires", action="store_true",
+                   help="each anatomy its own wire: its kind's with tip length, tip bend and friction drawn")
     args = p.parse_args(argv)
     kinds = [k.strip() for k in args.kinds.split(",") if k.strip()]
     if not kinds or any(k not in KINDS for k in kinds):
@@ -247,7 +289,7 @@ def main(argv=None):
     args = parse_args(argv)
     out = Path(args.out)
     entries = [write_spec(out, *sample_spec(args.seed, i, args.kinds)) for i in range(args.count)]
-    write_index(out, entries)
+    write_index(out, entries, args.seed, args.vary_wires)
     if args.specs_only:
         print(json.dumps({"out": str(out), "specs": len(entries)}))
         return 0
@@ -261,7 +303,7 @@ def main(argv=None):
     for r in results:
         print(json.dumps(r))
     if failed:  # a failed spec is dropped from the index, named here
-        write_index(out, [e for e, r in zip(entries, results) if "error" not in r])
+        write_index(out, [e for e, r in zip(entries, results) if "error" not in r], args.seed, args.vary_wires)
         print(f"error: {len(failed)} of {len(entries)} specs failed to mesh: "
               + ", ".join(r["name"] for r in failed), file=sys.stderr)
         return 1

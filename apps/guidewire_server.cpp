@@ -51,7 +51,8 @@ int main(int argc, char** argv) {
     const gw::TaskConfig config = gw::resolve_task_config(task_options);
     const gw::WireParams wire = wire_json.empty() ? gw::default_wire_params() : gw::load_wire_params(wire_json);
     std::vector<gw::Anatomy> loaded = gw::load_indexed_anatomies(anatomies, index);
-    for (gw::Anatomy& a : loaded) gw::apply_heart_settings(a, heart);  // no-op without --heart-rate / --motion
+    for (gw::Anatomy& a : loaded)  // no-op without --heart-rate / --motion; an index entry's own rate stands
+      if (!(a.scene && a.scene->motion)) gw::apply_heart_settings(a, heart);
     const gw::NavigationTask task = gw::make_navigation_task(config, wire, std::move(loaded));
     gw::TcpServer server(task, options);
     g_server = &server;

@@ -83,12 +83,13 @@ std::vector<AnatomySource> resolve_anatomy_sources(const std::string& spec, cons
       if (!fs::exists(truth))
         throw std::runtime_error(truth.string() + ": centerline truth file does not exist (needed beside " +
                                  mesh.string() + ")");
-      out.push_back({stem, mesh.string(), truth.string(), ""});
+      out.push_back({stem, mesh.string(), truth.string(), "", 0.0});
       continue;
     }
     if (ends_with(item, ".json")) {  // another anatomy index (a generated pool): every anatomy it lists
       if (!fs::exists(item)) throw std::runtime_error(item + ": anatomy index does not exist");
-      for (const AnatomyEntry& e : read_anatomy_index(item)) out.push_back({e.name, e.mesh, e.truth, e.wire});
+      for (const AnatomyEntry& e : read_anatomy_index(item))
+        out.push_back({e.name, e.mesh, e.truth, e.wire, e.heart_rate_bpm});
       continue;
     }
     if (!index_read) {
@@ -98,7 +99,7 @@ std::vector<AnatomySource> resolve_anatomy_sources(const std::string& spec, cons
     bool found = false;
     for (const AnatomyEntry& e : index) {
       if (e.set == item || e.name == item) {
-        out.push_back({e.name, e.mesh, e.truth, e.wire});
+        out.push_back({e.name, e.mesh, e.truth, e.wire, e.heart_rate_bpm});
         found = true;
       }
     }

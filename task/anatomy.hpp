@@ -35,6 +35,7 @@ Anatomy load_anatomy(const std::string& name, const std::string& mesh_path, cons
 struct AnatomySource {
   std::string name, mesh, truth;  // absolute or working-directory-relative paths
   std::string wire;               // the index entry's wire parameter JSON, "" = the run's wire
+  double heart_rate_bpm = 0;      // the index entry's heart rate (> 0: beats with its own field; lib/runner applies it)
 };
 
 // Resolves `spec`, a comma-separated list whose items are each

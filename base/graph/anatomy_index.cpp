@@ -1,6 +1,7 @@
 #include "base/graph/anatomy_index.hpp"
 #include "base/util/read_json_file.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -28,6 +29,9 @@ std::vector<AnatomyEntry> read_anatomy_index(const std::string& index_path, cons
       e.truth = resolve("truth", true);
       e.spec = resolve("spec", false);
       e.wire = resolve("wire", false);
+      e.heart_rate_bpm = a.value("heart_rate_bpm", 0.0);
+      if (!(e.heart_rate_bpm >= 0) || !std::isfinite(e.heart_rate_bpm))
+        throw std::runtime_error("'" + e.name + "': heart_rate_bpm must be a number >= 0");
       out.push_back(std::move(e));
     } catch (const std::exception& ex) {
       throw std::runtime_error(index_path + ": bad anatomy entry: " + ex.what());

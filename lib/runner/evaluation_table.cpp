@@ -167,8 +167,14 @@ nlohmann::json row_ceiling(const NavigationTask& task, const nlohmann::json& res
 
 std::vector<Anatomy> load_row_anatomies(const EvaluationRow& row, const EvaluationOptions& o) {
   std::vector<Anatomy> anatomies;
+  const std::vector<AnatomyEntry> pool = row.index.empty() ? std::vector<AnatomyEntry>{} : read_anatomy_index(row.index);
   for (const std::string& name : row.anatomies) {
-    const std::vector<AnatomySource> src = resolve_anatomy_sources(name, o.index_path);
+    std::vector<AnatomySource> src = resolve_anatomy_sources(name, o.index_path);
+    for (const AnatomyEntry& e : pool)  // a pool's row names its anatomies by their truth files: the entry's wire, rate
+      if (std::filesystem::weakly_canonical(e.truth) == std::filesystem::weakly_canonical(src.at(0).truth)) {
+        src.at(0).wire = e.wire;
+        src.at(0).heart_rate_bpm = e.heart_rate_bpm;
+      }
     NavigationAnatomyOptions load;
     if (!o.extract_centerlines) load.centerline_path = src.at(0).truth;
     // The insertion point is the user's input, not the extraction's guess: take it from the truth.
@@ -176,9 +182,9 @@ std::vector<Anatomy> load_row_anatomies(const EvaluationRow& row, const Evaluati
     NavigationAnatomy nav = load_navigation_anatomy(src.at(0).mesh, load);
     nav.anatomy.name = src.at(0).name;  // the index's name, or a pool row's file stem
     nav.anatomy.wire = load_source_wire(src.at(0));  // an arch pool's aortic wire; nullptr: the run's
-    if (row.heart_rate_bpm > 0) {  // a beating row: the anatomy's own field at the row's rate
-      HeartSettings heart;
-      heart.heart_rate_bpm = row.heart_rate_bpm;
+    if (row.heart_rate_bpm > 0 || src.at(0).heart_rate_bpm > 0) {  // a beating row, or a beating pool's entry:
+      HeartSettings heart;                                             // the anatomy's own field at that rate
+      heart.heart_rate_bpm = row.heart_rate_bpm > 0 ? row.heart_rate_bpm : src.at(0).heart_rate_bpm;
       apply_heart_settings(nav.anatomy, heart);
     }
     anatomies.push_back(std::move(nav.anatomy));
@@ -442,6 +448,7 @@ nlohmann::json run_task_settings(const nlohmann::json& run) {
 EvaluationRow index_row(const std::string& index_path) {
   EvaluationRow row;
   row.name = "pool " + index_path;
+  row.index = index_path;
   for (const AnatomyEntry& e : read_anatomy_index(index_path)) {
     // relative to the working directory where it lies below it, so a results.json names no machine's folders
     const std::string rel = std::filesystem::path(e.truth).lexically_relative(std::filesystem::current_path()).string();

@@ -23,6 +23,8 @@ struct EvaluationRow {
   bool base_policy = false;           // sensitivity rows: the policy trained on sensitivity/base only
   double heart_rate_bpm = 0;          // > 0: the wall beats at this rate (issue 36; the anatomy's own cardiac
                                       // field, lib/runner/heart_motion.hpp), the course following it
+  std::string index;                  // a pool's row (index_row): its index, whose entries' wire and heart rate
+                                      // the anatomies keep ("" for the table's rows)
 };
 
 // The rows of the paper's table, in its order.

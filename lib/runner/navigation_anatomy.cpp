@@ -10,6 +10,7 @@
 #include "base/graph/inlet_ambiguity.hpp"
 #include "centerline/intake_surface.hpp"
 #include "engine/scene/vessel_scene.hpp"
+#include "lib/runner/heart_motion.hpp"
 #include "task/task_config.hpp"
 
 namespace gw {
@@ -113,6 +114,11 @@ std::vector<Anatomy> load_indexed_anatomies(const std::string& spec, const std::
     for (const std::string& r : nav.repairs) std::cerr << "repaired: " << s.mesh << ": " << r << "\n";
     nav.anatomy.name = s.name;
     nav.anatomy.wire = load_source_wire(s);
+    if (s.heart_rate_bpm > 0) {  // a beating pool's entry: its own field at its own rate
+      HeartSettings heart;
+      heart.heart_rate_bpm = s.heart_rate_bpm;
+      apply_heart_settings(nav.anatomy, heart);
+    }
     out.push_back(std::move(nav.anatomy));
   }
   return out;

@@ -49,7 +49,8 @@ NavigationAnatomy load_navigation_anatomy(const std::string& mesh_path, const Na
 // The anatomies a spec names (task/anatomy.hpp: sets, names of `index_path`, or
 // mesh paths with a .truth.json beside them), each surface taken in through the mesh intake and
 // its graph read from its truth: what guidewire-server trains on. A clean file gives exactly the
-// anatomy load_anatomies gives; a user's surface is repaired, with its repairs on stderr.
+// anatomy load_anatomies gives; a user's surface is repaired, with its repairs on stderr. An index entry's
+// wire and heart rate (a beating pool's: its own cardiac field at that rate, apply_heart_settings) come with it.
 std::vector<Anatomy> load_indexed_anatomies(const std::string& spec, const std::string& index_path);
 
 // "coronary" for ".../coronary.stl".

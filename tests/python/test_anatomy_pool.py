@@ -99,6 +99,48 @@ def test_varied_wires_are_drawn_per_anatomy_within_their_ranges_and_leave_the_sp
             env.close()
 
 
+def test_a_beating_pool_gives_every_coronary_tree_a_rest_shaped_field_and_a_rate(tmp_path):
+    out = tmp_path / "beating"
+    assert anatomy_pool.main(["--out", str(out), "--count", "12", "--seed", "6", "--kinds", "coronary,arch",
+                              "--specs-only", "--beating"]) == 0
+    index = json.loads((out / "index.json").read_text())["anatomies"]
+    _, plain, _ = specs(tmp_path, 6, 12)
+    rates = []
+    for e, p in zip(index, plain):
+        spec = json.loads((out.parent / e["spec"]).read_text())
+        if e["set"] != "coronary":
+            assert "heart_rate_bpm" not in e and spec == p  # arches do not beat
+            continue
+        assert spec["deformation"]["phase"] == 0  # the mesh is the rest shape, as resolve_heart_motion needs
+        assert spec["branches"] == p["branches"]  # the same tree
+        assert 0 <= e["heart_rate_bpm"] <= anatomy_pool.MAX_HEART_RATE_BPM
+        assert f"{e['heart_rate_bpm']} bpm" in spec["description"]
+        rates.append(e["heart_rate_bpm"])
+    assert len(set(rates)) == len(rates) > 2
+
+
+def test_one_server_beats_an_anatomy_at_the_rate_its_index_entry_names(tmp_path):
+    if not guidewire_nav.app_path("guidewire-server").is_file():
+        pytest.skip("guidewire-server not built; set GW_BUILD_DIR")
+    stem = guidewire_nav.REPO_ROOT / "anatomies" / "test" / "coronary" / "coronary"  # its field is at phase 0
+    rows = [{"name": "beats", "mesh": f"{stem}.stl", "truth": f"{stem}.truth.json", "heart_rate_bpm": 90},
+            {"name": "still", "mesh": f"{stem}.stl", "truth": f"{stem}.truth.json"}]
+    (tmp_path / "b").mkdir()
+    index = tmp_path / "b" / "index.json"
+    index.write_text(json.dumps({"anatomies": rows}))
+    from guidewire_nav.env import GuidewireEnv
+    env = GuidewireEnv(anatomies=str(index))
+    try:
+        served = {a["name"]: a.get("heart_rate_bpm") for a in env.spec_reply["anatomies"]}
+        assert served == {"beats": 90.0, "still": None}
+    finally:
+        env.close()
+    index.write_text(json.dumps({"anatomies": [dict(rows[0], heart_rate_bpm=-5)]}))
+    bad = subprocess.run([str(guidewire_nav.app_path("guidewire-server")), "--port", "0", "--anatomies", str(index)],
+                         capture_output=True, text=True, timeout=60)
+    assert bad.returncode != 0 and "heart_rate_bpm" in bad.stderr and "beats" in bad.stderr
+
+
 def test_a_bad_kind_is_refused_by_name(tmp_path, capsys):
     with pytest.raises(SystemExit) as e:
         anatomy_pool.main(["--out", str(tmp_path), "--count", "1", "--seed", "0", "--kinds", "coronary,vein"])

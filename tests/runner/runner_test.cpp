@@ -724,3 +724,23 @@ TEST_CASE("a tip that whips free after winding up against the wall stays in the 
     CHECK(t.detail.find("outside the vessel wall") == std::string::npos);
   }
 }
+
+TEST_CASE("a pool's row keeps each entry's wire and heart rate", "[runner][pool]") {
+  const std::string stem = std::string(GW_SOURCE_DIR) + "/anatomies/test/coronary/coronary";  // field at phase 0
+  const fs::path d = scratch_dir("pool_row_entries");
+  std::ofstream(d / "index.json") << R"({"anatomies": [{"name": "beats", "mesh": ")" << stem << R"(.stl", "truth": ")"
+                                  << stem << R"(.truth.json", "heart_rate_bpm": 90, "wire": ")" << GW_SOURCE_DIR
+                                  << R"(/engine/wire/aortic_035_angled.json"}]})";
+  gw::EvaluationRow row = gw::index_row((d / "index.json").string());
+  gw::EvaluationOptions o;
+  o.extract_centerlines = false;
+  std::vector<gw::Anatomy> a = gw::load_row_anatomies(row, o);
+  REQUIRE(a.size() == 1);
+  REQUIRE(a[0].wire);
+  CHECK(a[0].wire->diameter_mm == 0.889);
+  REQUIRE(a[0].scene->motion);
+  CHECK(a[0].scene->motion->heart_rate_bpm == 90.0);
+  row.heart_rate_bpm = 60;  // a beating row's rate is the row's
+  a = gw::load_row_anatomies(row, o);
+  CHECK(a[0].scene->motion->heart_rate_bpm == 60.0);
+}

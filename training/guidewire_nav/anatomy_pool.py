@@ -48,6 +48,8 @@ BASE_WIRES = {"coronary": "coronary_014.json", **KIND_WIRES}  # --vary-wires: ea
 WIRE_RANGES = {"coronary": {"tip_length_mm": (3, 9), "tip_bend_deg": (40, 100), "friction": (0.05, 0.15)},
                "arch": {"tip_length_mm": (6, 14), "tip_bend_deg": (30, 60), "friction": (0.03, 0.08)}}
 WIRE_STREAM = 7  # the wire of sample i of seed S is drawn from (S, i, WIRE_STREAM, 0): apart from its spec's draws
+BEAT_STREAM = 8  # --beating: its heart from (S, i, BEAT_STREAM, 0)
+MAX_HEART_RATE_BPM = 120
 MAX_TARGETS = 8
 MAX_REDRAWS = 5  # draws of one sample after anatomy-gen refused its spec
 
@@ -181,13 +183,28 @@ def sample_arch(rng, name):
     return spec
 
 
-def sample_spec(seed, index, kinds, redraw=0):
+def heart(seed, name):
+    """--beating: the cardiac field (at phase 0: the mesh is its rest shape) and rate of coronary sample `name`,
+    drawn apart from its spec: amplitudes as the deformed trees' (radial 6-14 %, axial 4-12 %, twist 0-4
+    degrees/cm), rate 0-120 bpm."""
+    rng = np.random.default_rng([seed, int(name.rsplit("_", 1)[1]), BEAT_STREAM, 0])
+    field = {"center": [0, 0, 0], "axis": [0, 0, -1], "radial_contraction": round(rng.uniform(0.06, 0.14), 3),
+             "axial_shortening": round(rng.uniform(0.04, 0.12), 3),
+             "twist_deg_per_cm": round(rng.uniform(0.0, 4.0), 2), "phase": 0}
+    return field, round(rng.uniform(0, MAX_HEART_RATE_BPM), 1)
+
+
+def sample_spec(seed, index, kinds, redraw=0, beating=False):
     """Sample `index` of pool `seed`: its kind and spec. Redraw k > 0 (after the generator refused the spec) is
-    drawn from (seed, index, k) instead, under the same name."""
+    drawn from (seed, index, k) instead, under the same name. `beating`: a coronary tree's deformation is replaced
+    by its heart's field at phase 0 (heart())."""
     rng = np.random.default_rng([seed, index] if redraw == 0 else [seed, index, redraw])
     kind = kinds[int(rng.integers(len(kinds)))]
     name = f"{kind}_{seed}_{index:04d}"
     spec = (sample_arch if kind == "arch" else sample_coronary)(rng, name)
+    if beating and kind == "coronary":
+        spec["deformation"], rate = heart(seed, name)
+        spec["description"] += f" Beats at {rate} bpm (gw-anatomy-pool --beating; the mesh is the rest shape)."
     if redraw:
         spec["description"] += f" Redraw {redraw}: anatomy-gen refused the earlier draws."
     return kind, spec
@@ -207,11 +224,11 @@ def drawn_wire(seed, name, kind):
     return wire
 
 
-def write_index(out, entries, seed=0, vary_wires=False):
+def write_index(out, entries, seed=0, vary_wires=False, beating=False):
     """OUT/index.json in anatomies/index.json's format, paths relative to OUT's parent. A kind with its own wire
     (KIND_WIRES: the aortic arches') gets that wire's JSON copied to OUT/wires/ and named by its entries, so that
     one server serves a pool of coronary trees and arches, each with its wire; with `vary_wires` every entry names
-    its own drawn wire, OUT/wires/<name>.json."""
+    its own drawn wire, OUT/wires/<name>.json; with `beating` a coronary entry names its heart rate."""
     rel = out.name
     rows = []
     for k, n in entries:
@@ -225,6 +242,8 @@ def write_index(out, entries, seed=0, vary_wires=False):
             else:
                 shutil.copyfile(REPO / "engine" / "wire" / file, out / "wires" / file)
             row["wire"] = f"{rel}/wires/{file}"
+        if beating and k == "coronary":
+            row["heart_rate_bpm"] = heart(seed, n)[1]
         rows.append(row)
     (out / "index.json").write_text(json.dumps({"anatomies": rows}, indent=1) + "\n")
 
@@ -250,6 +269,8 @@ def parse_args(argv=None):
     p.add_argument("--jobs", type=int, default=1, help="anatomy-gen processes at once")
     p.add_argument("--anatomy-gen", default=None, help="the anatomy-gen binary (default: $GW_BUILD_DIR/apps)")
     p.add_argument("--specs-only", action="store_true", help="write the specs and index, mesh nothing")
+    p.add_argument("--beating", action="store_true",
+                   help="every coronary tree beats: a cardiac field at phase 0 and a rate of 0-120 bpm, drawn")
     p.add_argument("--vary-wires", action="store_true",
                    help="each anatomy its own wire: its kind's with tip length, tip bend and friction drawn")
     args = p.parse_args(argv)
@@ -271,14 +292,14 @@ def write_spec(out, kind, spec):
     return kind, spec["name"]
 
 
-def mesh_or_redraw(gen, out, seed, index, kinds, entry):
+def mesh_or_redraw(gen, out, seed, index, kinds, entry, beating=False):
     """Meshes sample `index`; when anatomy-gen refuses its spec (e.g. two branches that intersect, which the
     sampler's own clearance test did not see), draws it again (up to MAX_REDRAWS times) and meshes that."""
     result = mesh_one(gen, out / entry[0] / entry[1], entry[1])
     for redraw in range(1, MAX_REDRAWS + 1):
         if "error" not in result:
             break
-        kind, spec = sample_spec(seed, index, kinds, redraw)
+        kind, spec = sample_spec(seed, index, kinds, redraw, beating)
         entry = write_spec(out, kind, spec)
         result = mesh_one(gen, out / kind / spec["name"], spec["name"])
         result["redraw"] = redraw
@@ -288,8 +309,8 @@ def mesh_or_redraw(gen, out, seed, index, kinds, entry):
 def main(argv=None):
     args = parse_args(argv)
     out = Path(args.out)
-    entries = [write_spec(out, *sample_spec(args.seed, i, args.kinds)) for i in range(args.count)]
-    write_index(out, entries, args.seed, args.vary_wires)
+    entries = [write_spec(out, *sample_spec(args.seed, i, args.kinds, beating=args.beating)) for i in range(args.count)]
+    write_index(out, entries, args.seed, args.vary_wires, args.beating)
     if args.specs_only:
         print(json.dumps({"out": str(out), "specs": len(entries)}))
         return 0
@@ -297,13 +318,14 @@ def main(argv=None):
     if not Path(gen).exists():
         sys.exit(f"error: --anatomy-gen: {gen}: not found (build the project first)")
     with ThreadPoolExecutor(args.jobs) as pool:
-        results = list(pool.map(lambda i: mesh_or_redraw(gen, out, args.seed, i, args.kinds, entries[i]),
+        results = list(pool.map(lambda i: mesh_or_redraw(gen, out, args.seed, i, args.kinds, entries[i], args.beating),
                                 range(len(entries))))
     failed = [r for r in results if "error" in r]
     for r in results:
         print(json.dumps(r))
     if failed:  # a failed spec is dropped from the index, named here
-        write_index(out, [e for e, r in zip(entries, results) if "error" not in r], args.seed, args.vary_wires)
+        write_index(out, [e for e, r in zip(entries, results) if "error" not in r], args.seed, args.vary_wires,
+                    args.beating)
         print(f"error: {len(failed)} of {len(entries)} specs failed to mesh: "
               + ", ".join(r["name"] for r in failed), file=sys.stderr)
         return 1

@@ -6,24 +6,31 @@
 # checkpoints, made on this machine, not a figure. Checkpoints already scored are kept. Then the strict and procedure
 # figures (with the tip within 1.5 N) of each, by results/pool_validation/summarize.py, into RUN/selection/summary.json.
 #   bash results/generalist/select.sh            # after results/generalist/train.sh
+# On 2 cores each checkpoint takes several minutes: STEPS="300000 400000" scores only those checkpoints, and
+# EPISODES=0:100 only the first 100 episodes (kept apart: RUN/selection/STEP_e0-100).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 RUN=${RUN:-runs/generalist}
 POOL=${POOL:-runs/pool/validation}
+STEPS=${STEPS:-}
+EPISODES=${EPISODES:-}
+range=(); tag=""
+if [ -n "$EPISODES" ]; then range=(--episodes "$EPISODES"); tag="_e${EPISODES/:/-}"; fi
 .venv/bin/gw-anatomy-pool --out "$POOL" --count 40 --seed 900001 --jobs 2 > /dev/null
 mkdir -p "$RUN/selection"
 results=()
 for zip in "$RUN"/checkpoints/sac_*_steps.zip; do
   [ -e "$zip" ] || { echo "no checkpoint in $RUN/checkpoints" >&2; exit 1; }
   step=$(basename "$zip" _steps.zip); step=${step#sac_}
+  if [ -n "$STEPS" ] && [[ " $STEPS " != *" $step "* ]]; then continue; fi
   actor="$RUN/selection/ckpt_$step.json"
   [ -f "$actor" ] || .venv/bin/gw-export "$zip" "$actor" --obs-layout guidewire-nav/obs/8 > /dev/null
-  if [ ! -f "$RUN/selection/$step/results.json" ]; then
+  if [ ! -f "$RUN/selection/$step$tag/results.json" ]; then
     build/apps/evaluate --rows "$POOL/index.json" --controllers policy --policy "$actor" \
       --task training/tasks/generalist.json --reachability-seeds 0 --step-time-limit 1 --threads 2 \
-      --out "$RUN/selection/$step" > /dev/null
+      "${range[@]}" --out "$RUN/selection/$step$tag" > /dev/null
   fi
-  results+=("$RUN/selection/$step/results.json")
+  results+=("$RUN/selection/$step$tag/results.json")
 done
 for r in "${results[@]}"; do  # one summary per checkpoint, keyed by its steps
   echo "$(basename "$(dirname "$r")") $(.venv/bin/python results/pool_validation/summarize.py "$r" | tr -d '\n')"
@@ -33,7 +40,7 @@ out = {}
 for line in sys.stdin:
     step, summary = line.split(" ", 1)
     (row,) = json.loads(summary).values()
-    out[int(step)] = row["sac-policy"]
-json.dump(dict(sorted(out.items())), sys.stdout, indent=1)
-' > "$RUN/selection/summary.json"
-echo "wrote $RUN/selection/summary.json"
+    out[step] = row["sac-policy"]
+json.dump(dict(sorted(out.items(), key=lambda kv: (int(kv[0].split("_")[0]), kv[0]))), sys.stdout, indent=1)
+' > "$RUN/selection/summary$tag.json"
+echo "wrote $RUN/selection/summary$tag.json"

@@ -5,12 +5,7 @@
 #   EPISODES=0:100 bash results/generalist/baseline.sh     # then: python results/generalist/compare.py A B
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-RUN=${RUN:-runs/generalist}
-POOL=${POOL:-runs/pool/validation}
-EPISODES=${EPISODES:-}
-range=(); tag=""
-if [ -n "$EPISODES" ]; then range=(--episodes "$EPISODES"); tag="_e${EPISODES/:/-}"; fi
-.venv/bin/gw-anatomy-pool --out "$POOL" --count 40 --seed 900001 --jobs 2 > /dev/null
+source results/generalist/validation_pool.sh  # RUN, POOL, EPISODES -> range and tag; the pool drawn
 out="$RUN/selection/push_pull$tag"
 if [ ! -f "$out/results.json" ]; then
   build/apps/evaluate --rows "$POOL/index.json" --controllers policy --policy policy/trained/sac_actor_push_pull.json \

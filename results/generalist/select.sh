@@ -10,13 +10,8 @@
 # EPISODES=0:100 only the first 100 episodes (kept apart: RUN/selection/STEP_e0-100).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-RUN=${RUN:-runs/generalist}
-POOL=${POOL:-runs/pool/validation}
+source results/generalist/validation_pool.sh  # RUN, POOL, EPISODES -> range and tag; the pool drawn
 STEPS=${STEPS:-}
-EPISODES=${EPISODES:-}
-range=(); tag=""
-if [ -n "$EPISODES" ]; then range=(--episodes "$EPISODES"); tag="_e${EPISODES/:/-}"; fi
-.venv/bin/gw-anatomy-pool --out "$POOL" --count 40 --seed 900001 --jobs 2 > /dev/null
 mkdir -p "$RUN/selection"
 results=()
 for zip in "$RUN"/checkpoints/sac_*_steps.zip; do

@@ -240,3 +240,23 @@ print(json.dumps({"name": s["name"]}))
     # A rerun keeps the meshed anatomies with their redrawn specs (the first draw is not written over them).
     assert anatomy_pool.main(args) == 0
     assert [json.loads((out.parent / e["spec"]).read_text()) for e in index] == redrawn
+
+
+def test_a_pool_rerun_with_other_options_is_refused_naming_the_anatomy(tmp_path, capsys):
+    # A stand-in for anatomy-gen that meshes every spec (writes placeholder files).
+    gen = tmp_path / "fake-anatomy-gen"
+    gen.write_text("""#!/usr/bin/env python3
+import json, pathlib, sys
+spec, out = pathlib.Path(sys.argv[sys.argv.index("--spec") + 1]), pathlib.Path(sys.argv[sys.argv.index("--out") + 1])
+s = json.loads(spec.read_text())
+(out / (s["name"] + ".stl")).write_text("solid x\\nendsolid x\\n")
+(out / (s["name"] + ".truth.json")).write_text("{}")
+print(json.dumps({"name": s["name"]}))
+""")
+    gen.chmod(0o755)
+    args = ["--out", str(tmp_path / "pool"), "--count", "2", "--seed", "5", "--anatomy-gen", str(gen)]
+    assert anatomy_pool.main(args + ["--beating"]) == 0
+    assert anatomy_pool.main(args + ["--beating", "--vary-wires"]) == 0  # wires are the index's: no conflict
+    with pytest.raises(SystemExit) as e:
+        anatomy_pool.main(args)  # the meshed trees were drawn beating
+    assert "coronary_5_0000.spec.json" in str(e.value) and "other options" in str(e.value)

@@ -284,11 +284,17 @@ def parse_args(argv=None):
 
 
 def write_spec(out, kind, spec):
-    """OUT/<kind>/<name>/<name>.spec.json, unless that anatomy is already meshed (its spec may be a redraw)."""
+    """OUT/<kind>/<name>/<name>.spec.json, unless that anatomy is already meshed (its spec may be a redraw). A meshed
+    first draw whose spec is not this one was drawn with other options (--beating): refused, naming it."""
     folder = out / kind / spec["name"]
     folder.mkdir(parents=True, exist_ok=True)
+    path = folder / f"{spec['name']}.spec.json"
     if not ((folder / f"{spec['name']}.stl").exists() and (folder / f"{spec['name']}.truth.json").exists()):
-        (folder / f"{spec['name']}.spec.json").write_text(json.dumps(spec, indent=1) + "\n")
+        path.write_text(json.dumps(spec, indent=1) + "\n")
+    elif path.exists() and "Redraw" not in (kept := json.loads(path.read_text())).get("description", "") \
+            and kept != spec:
+        sys.exit(f"error: {path}: this pool was drawn with other options (--beating with or without?): its meshed "
+                 "anatomy's spec is not this draw's; use another --out")
     return kind, spec["name"]
 
 

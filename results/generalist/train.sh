@@ -12,14 +12,25 @@
 # checkpoints (every 10,000 steps) are chosen later on the validation pool (seed 900001), never on a test row.
 # Each call runs at most MINUTES of wall time and goes on from the run's last checkpoint:
 #   bash results/generalist/train.sh            # again and again until the 400,000 steps are done
+# DISTRIBUTION=full trains on issue 64's whole distribution instead (a run of its own, runs/generalist_full): 200
+# anatomies of seed 2, three coronary trees to one aortic arch, every anatomy with its own drawn tip and friction,
+# every coronary tree beating at its own 0-120 bpm, each arch with the aortic wire (docs/anatomy_pool.md).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-OUT=${OUT:-runs/generalist}
 MINUTES=${MINUTES:-65}
-.venv/bin/gw-anatomy-pool --out runs/pool/train --count 100 --seed 1 --jobs 2 > /dev/null
+if [ "${DISTRIBUTION:-coronary}" = full ]; then
+  OUT=${OUT:-runs/generalist_full}
+  POOL=runs/pool/train_full
+  .venv/bin/gw-anatomy-pool --out "$POOL" --count 200 --seed 2 --kinds coronary,coronary,coronary,arch \
+    --vary-wires --beating --jobs 2 > /dev/null
+else
+  OUT=${OUT:-runs/generalist}
+  POOL=runs/pool/train
+  .venv/bin/gw-anatomy-pool --out "$POOL" --count 100 --seed 1 --jobs 2 > /dev/null
+fi
 resume=()
 if [ -f "$OUT/settings.json" ]; then resume=(--resume); fi  # a run already started: go on from its last checkpoint
-.venv/bin/gw-train --anatomies runs/pool/train/index.json --task training/tasks/generalist.json \
+.venv/bin/gw-train --anatomies "$POOL/index.json" --task training/tasks/generalist.json \
   --init-actor policy/trained/sac_actor_push_pull.json --actor-freeze-steps 5000 --ent-coef auto_0.02 \
   --train-freq 4 --gradient-steps 2 --total-steps 400000 --envs 2 --eval-episodes 0 --checkpoint-every 10000 \
   --step-cutoff 1 --no-progress --torch-threads 1 \

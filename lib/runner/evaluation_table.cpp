@@ -167,14 +167,18 @@ nlohmann::json row_ceiling(const NavigationTask& task, const nlohmann::json& res
 
 std::vector<Anatomy> load_row_anatomies(const EvaluationRow& row, const EvaluationOptions& o) {
   std::vector<Anatomy> anatomies;
+  // A pool's row (index_row) lists its index's entries by their truth files, in the index's order: entry i's wire
+  // and heart rate go with anatomy i.
   const std::vector<AnatomyEntry> pool = row.index.empty() ? std::vector<AnatomyEntry>{} : read_anatomy_index(row.index);
-  for (const std::string& name : row.anatomies) {
-    std::vector<AnatomySource> src = resolve_anatomy_sources(name, o.index_path);
-    for (const AnatomyEntry& e : pool)  // a pool's row names its anatomies by their truth files: the entry's wire, rate
-      if (std::filesystem::weakly_canonical(e.truth) == std::filesystem::weakly_canonical(src.at(0).truth)) {
-        src.at(0).wire = e.wire;
-        src.at(0).heart_rate_bpm = e.heart_rate_bpm;
-      }
+  if (!pool.empty() && pool.size() != row.anatomies.size())
+    throw std::runtime_error(row.index + ": the index lists " + std::to_string(pool.size()) + " anatomies, its row " +
+                             std::to_string(row.anatomies.size()) + " (the file changed during the run?)");
+  for (std::size_t i = 0; i < row.anatomies.size(); ++i) {
+    std::vector<AnatomySource> src = resolve_anatomy_sources(row.anatomies[i], o.index_path);
+    if (!pool.empty()) {
+      src.at(0).wire = pool[i].wire;
+      src.at(0).heart_rate_bpm = pool[i].heart_rate_bpm;
+    }
     NavigationAnatomyOptions load;
     if (!o.extract_centerlines) load.centerline_path = src.at(0).truth;
     // The insertion point is the user's input, not the extraction's guess: take it from the truth.

@@ -10,10 +10,10 @@ import guidewire_nav
 from guidewire_nav import anatomy_pool
 
 
-def specs(tmp_path, seed, count, kinds="coronary,arch"):
-    out = tmp_path / f"pool_{seed}"
+def specs(tmp_path, seed, count, kinds="coronary,arch", options=(), name=None):
+    out = tmp_path / (name or f"pool_{seed}")
     assert anatomy_pool.main(["--out", str(out), "--count", str(count), "--seed", str(seed), "--kinds", kinds,
-                              "--specs-only"]) == 0
+                              "--specs-only", *options]) == 0
     index = json.loads((out / "index.json").read_text())["anatomies"]
     return out, [json.loads((out.parent / e["spec"]).read_text()) for e in index], index
 
@@ -66,12 +66,9 @@ def test_a_mixed_pool_names_the_aortic_wire_for_its_arches_only(tmp_path):
 
 
 def test_varied_wires_are_drawn_per_anatomy_within_their_ranges_and_leave_the_specs_alone(tmp_path):
-    out = tmp_path / "varied"
-    assert anatomy_pool.main(["--out", str(out), "--count", "12", "--seed", "6", "--kinds", "coronary,arch",
-                              "--specs-only", "--vary-wires"]) == 0
-    index = json.loads((out / "index.json").read_text())["anatomies"]
+    out, varied_specs, index = specs(tmp_path, 6, 12, options=["--vary-wires"], name="varied")
     _, plain_specs, _ = specs(tmp_path, 6, 12)
-    assert [json.loads((out.parent / e["spec"]).read_text()) for e in index] == plain_specs  # same anatomies
+    assert varied_specs == plain_specs  # same anatomies
     wires = [json.loads((out.parent / e["wire"]).read_text()) for e in index]
     assert len({w["friction"] for w in wires}) == len(wires)  # one draw each
     for e, w in zip(index, wires):
@@ -84,9 +81,7 @@ def test_varied_wires_are_drawn_per_anatomy_within_their_ranges_and_leave_the_sp
         assert w["tip_length_mm"] < w["fine_region_mm"]  # the bent length on the fine tip elements
         assert {k: v for k, v in w.items() if k not in ("tip_length_mm", "tip_curvature_per_mm", "friction", "comment")} \
             == {k: v for k, v in base.items() if k not in ("tip_length_mm", "tip_curvature_per_mm", "friction", "comment")}
-    again = tmp_path / "again" / "varied"
-    assert anatomy_pool.main(["--out", str(again), "--count", "12", "--seed", "6", "--kinds", "coronary,arch",
-                              "--specs-only", "--vary-wires"]) == 0
+    again, _, _ = specs(tmp_path / "again", 6, 12, options=["--vary-wires"], name="varied")
     assert [(again / "wires" / f"{e['name']}.json").read_text() for e in index] == \
         [(out / "wires" / f"{e['name']}.json").read_text() for e in index]  # same seed, same wires
     if guidewire_nav.app_path("guidewire-server").is_file():  # the engine takes a drawn wire
@@ -100,14 +95,10 @@ def test_varied_wires_are_drawn_per_anatomy_within_their_ranges_and_leave_the_sp
 
 
 def test_a_beating_pool_gives_every_coronary_tree_a_rest_shaped_field_and_a_rate(tmp_path):
-    out = tmp_path / "beating"
-    assert anatomy_pool.main(["--out", str(out), "--count", "12", "--seed", "6", "--kinds", "coronary,arch",
-                              "--specs-only", "--beating"]) == 0
-    index = json.loads((out / "index.json").read_text())["anatomies"]
+    _, beating, index = specs(tmp_path, 6, 12, options=["--beating"], name="beating")
     _, plain, _ = specs(tmp_path, 6, 12)
     rates = []
-    for e, p in zip(index, plain):
-        spec = json.loads((out.parent / e["spec"]).read_text())
+    for e, spec, p in zip(index, beating, plain):
         if e["set"] != "coronary":
             assert "heart_rate_bpm" not in e and spec == p  # arches do not beat
             continue

@@ -45,6 +45,40 @@ double slide_on_incline(double mu, double angle, double seconds) {
   return end - start;
 }
 
+// A laid wire pulled round a bend: `steps` steps with the proximal end retracted at 2 mm/s; from step `skip` on, the
+// mean axial force (EA x stretch) of the elements whose arc from the inlet lies strictly inside `pulling` (the
+// proximal straight) and inside `pulled` (the distal one), averaged over those steps. Returns {pulling, pulled} [mN].
+using ArcRange = std::pair<double, double>;  // arc from the inlet, mm (open interval)
+
+std::pair<double, double> pulled_tensions(const WireModel& m, const VesselScene& scene, WireState& s, int steps,
+                                          int skip, ArcRange pulling, ArcRange pulled) {
+  const Control pull{-2.0, 0.0};
+  double out_sum = 0, in_sum = 0;
+  int samples = 0;
+  for (int i = 0; i < steps; ++i) {
+    const StepReport rep = step(m, &scene, pull, s);
+    if (!rep.ok) FAIL("the step failed: " << rep.problem);
+    if (i < skip) continue;
+    const int k = first_free_node(m, s);
+    double out = 0, in = 0;
+    int n_out = 0, n_in = 0;
+    for (int e = k; e + 1 < m.nodes; ++e) {
+      const double a = s.inserted_length_mm - m.arc_from_tip[e];
+      if (a > pulling.first && a < pulling.second) {
+        out += axial_force(m, s, e);
+        ++n_out;
+      } else if (a > pulled.first && a < pulled.second) {
+        in += axial_force(m, s, e);
+        ++n_in;
+      }
+    }
+    out_sum += out / n_out;
+    in_sum += in / n_in;
+    ++samples;
+  }
+  return {out_sum / samples, in_sum / samples};
+}
+
 }  // namespace
 
 TEST_CASE("a wire on an inclined plane starts to slide at tan(angle) = mu", "[validation][friction]") {
@@ -104,33 +138,11 @@ TEST_CASE("a wire pulled through a rigid bend obeys the capstan law T_out = T_in
       const double t_in = 500.0;
       const Eigen::Vector3d exit = path.tangents.back();
       s.external_force.back() = t_in * exit;
-      const Control pull{-2.0, 0.0};
-      double out_sum = 0, in_sum = 0;
-      int samples = 0;
-      for (int i = 0; i < 50; ++i) {
-        const StepReport rep = step(m, &scene, pull, s);
-        if (!rep.ok) FAIL("the step failed: " << rep.problem);
-        if (i < 30) continue;
-        // Elements whose both nodes lie on the straights (arc from the inlet, with 3 mm margins).
-        const int k = first_free_node(m, s);
-        double out = 0, in = 0;
-        int n_out = 0, n_in = 0;
-        for (int e = k; e + 1 < m.nodes; ++e) {
-          const double a = s.inserted_length_mm - m.arc_from_tip[e];
-          if (a > 5.0 && a < 27.0) {
-            out += axial_force(m, s, e);
-            ++n_out;
-          } else if (a > 30.0 + 8.0 * theta + 3.0 && a < inserted - 5.0) {
-            in += axial_force(m, s, e);
-            ++n_in;
-          }
-        }
-        out_sum += out / n_out;
-        in_sum += in / n_in;
-        ++samples;
-      }
-      const double ratio = out_sum / in_sum;
-      INFO("theta " << theta << " mu " << mu << ": T_in " << in_sum / samples << " mN, T_out " << out_sum / samples
+      // Elements whose both nodes lie on the straights (arc from the inlet, with 3 mm margins).
+      const auto [t_out_mean, t_in_mean] =
+          pulled_tensions(m, scene, s, 50, 30, {5.0, 27.0}, {30.0 + 8.0 * theta + 3.0, inserted - 5.0});
+      const double ratio = t_out_mean / t_in_mean;
+      INFO("theta " << theta << " mu " << mu << ": T_in " << t_in_mean << " mN, T_out " << t_out_mean
                     << " mN, ratio " << ratio << " against exp(mu theta) = " << std::exp(mu * theta));
       WARN("capstan theta = " << theta << ", mu = " << mu << ": T_out / T_in = " << ratio << " against "
                               << std::exp(mu * theta) << " (" << 100.0 * (ratio / std::exp(mu * theta) - 1) << "%)");
@@ -243,36 +255,17 @@ TEST_CASE("the real wires pulled round a wide bend obey the stiff-rod capstan la
         WireState s = make_initial_state(m, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), 0.0, inserted);
         lay_along(m, s, path);
         s.external_force.back() = f0 * path.tangents.back();
-        const Control pull{-2.0, 0.0};
-        double out_sum = 0, in_sum = 0;
-        for (int i = 0; i < 200; ++i) {
-          const StepReport rep = step(m, &scene, pull, s);
-          if (!rep.ok) FAIL("the step failed: " << rep.problem);
-          if (i < 120) continue;
-          const int k = first_free_node(m, s);
-          double out = 0, in = 0;
-          int n_out = 0, n_in = 0;
-          for (int e = k; e + 1 < m.nodes; ++e) {
-            const double a = s.inserted_length_mm - m.arc_from_tip[e];
-            if (a > 5.0 && a < 25.0) {
-              out += axial_force(m, s, e);
-              ++n_out;
-            } else if (a > inserted - 25.0 && a < inserted - 5.0) {
-              in += axial_force(m, s, e);
-              ++n_in;
-            }
-          }
-          out_sum += out / n_out;
-          in_sum += in / n_in;
-        }
-        const double ratio = out_sum / in_sum;
-        const double stiff = stiff_capstan_pull(f0, m.stiffness[m.nodes / 2][4], bend - tube + m.radius_mm, theta, mu) / f0;
+        const auto [fl, f0_measured] =
+            pulled_tensions(m, scene, s, 200, 120, {5.0, 25.0}, {inserted - 25.0, inserted - 5.0});
+        const double ratio = fl / f0_measured;
+        const double ei = m.stiffness[m.nodes / 2][4];  // uniform
+        const double stiff = stiff_capstan_pull(f0, ei, bend - tube + m.radius_mm, theta, mu) / f0;
         const double rope = std::exp(mu * theta);
-        INFO("wire " << wire.diameter_mm << " mm, theta " << theta << ", mu " << mu << ": F0 " << in_sum / 80 << " mN");
+        INFO("wire " << wire.diameter_mm << " mm, theta " << theta << ", mu " << mu << ": F0 " << f0_measured << " mN");
         WARN("stiff capstan, wire " << wire.diameter_mm << " mm, theta " << theta << ", mu " << mu << ": FL / F0 = "
-             << ratio << " against the stiff rod's " << stiff << " (" << 100.0 * (ratio / stiff - 1) << "%), the rope's "
-             << rope << " (" << 100.0 * (ratio / rope - 1) << "%)");
-        CHECK(in_sum / 80 == Approx(f0).epsilon(0.01));  // the load reaches the measured straight
+             << ratio << " against the stiff rod's " << stiff << " (" << 100.0 * (ratio / stiff - 1)
+             << "%), the rope's " << rope << " (" << 100.0 * (ratio / rope - 1) << "%)");
+        CHECK(f0_measured == Approx(f0).epsilon(0.01));  // the load reaches the measured straight
         CHECK(ratio == Approx(stiff).epsilon(0.03));
         if (theta > 3) CHECK(std::abs(ratio / rope - 1) > 2 * std::abs(ratio / stiff - 1));  // the rope's law does not
       }

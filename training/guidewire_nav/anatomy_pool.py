@@ -22,6 +22,7 @@ first draws, unchecked). An anatomy already meshed keeps its spec.
 """
 
 import argparse
+import functools
 import importlib.util
 import json
 import math
@@ -210,9 +211,15 @@ def sample_spec(seed, index, kinds, redraw=0, beating=False):
     return kind, spec
 
 
+@functools.lru_cache(maxsize=None)
+def base_wire_text(kind):
+    """The shipped wire JSON of `kind` (BASE_WIRES), read once per run."""
+    return (REPO / "engine" / "wire" / BASE_WIRES[kind]).read_text()
+
+
 def drawn_wire(seed, name, kind):
     """--vary-wires: the kind's shipped wire with its tip length, tip bend and friction drawn for sample `name`."""
-    wire = json.loads((REPO / "engine" / "wire" / BASE_WIRES[kind]).read_text())
+    wire = json.loads(base_wire_text(kind))
     rng = np.random.default_rng([seed, int(name.rsplit("_", 1)[1]), WIRE_STREAM, 0])
     r = WIRE_RANGES[kind]
     length = rng.uniform(*r["tip_length_mm"])

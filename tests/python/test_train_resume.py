@@ -5,6 +5,7 @@ checkpoint with its replay buffer and step counter."""
 import json
 import signal
 
+import numpy as np
 import pytest
 
 from guidewire_nav.env import GuidewireEnv, RestartingEnv, find_server_binary
@@ -78,6 +79,32 @@ def test_resume_continues_the_run_from_its_checkpoint(tmp_path):
     model.load_replay_buffer(out / "final_replay_buffer.pkl")
     assert model.num_timesteps == 180
     assert model.replay_buffer.size() == 180  # the 120 transitions it had, and the 60 after
+
+
+def test_a_resumed_fine_tune_goes_on_with_its_own_actor_anchored_to_its_start(tmp_path):
+    """--resume of an --init-actor run continues from the checkpoint's actor (not the start's again), while the
+    anchor still pulls towards the actor the run started from. A fast actor rate moves the actor far in the first
+    part; the resumed part, cut after a moment by --max-minutes, ends next to that actor, far from the start."""
+    import torch
+    from stable_baselines3 import SAC
+    from guidewire_nav.train import anchor_loss
+
+    start_run = tmp_path / "start"
+    assert _train(start_run, "--total-steps", "60") == 0
+    tune = ["--init-actor", str(start_run / "actor.json"), "--actor-learning-rate", "3e-2", "--anchor-weight", "0.001"]
+    out = tmp_path / "tuned"
+    assert _train(out, "--total-steps", "120", *tune) == 0
+    assert _train(out, "--total-steps", "100000", "--resume", "--max-minutes", "0.001", *tune) == 0
+
+    load = lambda path: SAC.load(path, device="cpu").actor  # noqa: E731
+    start, part1, last = load(start_run / "final_model.zip"), load(out / "checkpoints" / "sac_120_steps.zip"), \
+        load(out / "final_model.zip")
+    obs = torch.as_tensor(np.random.default_rng(0).uniform(-1, 1, (256, start.observation_space.shape[0])),
+                          dtype=torch.float32)
+    with torch.no_grad():
+        moved = anchor_loss(part1, start, obs).item()
+        assert moved > 1e-3  # the first part left its start
+        assert anchor_loss(last, part1, obs).item() < 0.1 * moved  # the resumed part went on from there
 
 
 def test_resume_counts_the_transitions_of_every_env(tmp_path, capsys):

@@ -235,7 +235,32 @@ def test_anchor_holds_a_fine_tuned_actor_near_the_one_it_started_from(smoke_run,
                  for name in ("free", "anchored")}
     assert moved["free"] > 1e-3, moved  # the fast rate does move an unanchored actor
     assert moved["anchored"] < 0.1 * moved["free"], moved  # measured 3e-5 against 1e-2
-    assert json.loads((tmp_path / "anchored" / "settings.json").read_text())["anchor_weight"] == 100
+    assert json.loads((tmp_path / "anchored" / "settings.json").read_text())["anchor_weight"] == "100"
+
+
+def test_anchor_weights_one_for_every_action_or_one_per_action():
+    """--anchor-weight W weighs every action's square by W; W1,W2 each its own (act/2: rotation, insertion), so
+    '10,0' ties the aim to the start and leaves the speed free; a wrong count or a negative weight is refused."""
+    import torch
+    from guidewire_nav.train import anchor_loss, anchor_weights
+
+    assert anchor_weights("10", 2) == [10.0, 10.0] and anchor_weights("10,0", 2) == [10.0, 0.0]
+    for bad in ("1,2,3", "-1", "ten"):
+        with pytest.raises(SystemExit, match="--anchor-weight"):
+            anchor_weights(bad, 2)
+
+    class Fixed(torch.nn.Module):  # an actor whose deterministic action is a constant
+        def __init__(self, action):
+            super().__init__()
+            self.action = torch.tensor(action)
+
+        def forward(self, obs, deterministic=True):
+            return self.action.expand(obs.shape[0], -1)
+
+    obs = torch.zeros(4, 3)
+    moved, start = Fixed([0.5, -1.0]), Fixed([0.0, 1.0])
+    assert anchor_loss(moved, start, obs).item() == pytest.approx(0.25 + 4.0)
+    assert anchor_loss(moved, start, obs, torch.tensor([10.0, 0.0])).item() == pytest.approx(2.5)
 
 
 def test_init_actor_refuses_a_network_of_another_shape(smoke_run, tmp_path):

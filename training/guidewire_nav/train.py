@@ -58,8 +58,10 @@ class Settings:
                                     "~0.1 before tanh")
     actor_freeze_steps: int = arg(0, "environment steps the actor (and entropy coefficient) stay fixed while fresh "
                                      "critics learn its values; then ordinary SAC")
-    anchor_weight: float = arg(0.0, "fine-tune: adds weight * |a(s) - a_start(s)|^2 (deterministic actions on "
-                                    "replayed states) to the actor loss, tying it to the actor it started from")
+    anchor_weight: str = arg("0", "fine-tune: adds W * |a(s) - a_start(s)|^2 (deterministic actions on replayed "
+                                  "states) to the actor loss, tying it to the actor it started from; one W for every "
+                                  "action, or one per action (act/2: rotation,insertion; '10,0' holds the aim and "
+                                  "leaves the speed free)")
     total_steps: int = arg(150_000, "environment steps over all workers")
     envs: int = arg(2, "parallel servers (SubprocVecEnv); 1 = in-process DummyVecEnv")
     seed: int = arg(0, "seed of numpy, torch, SAC and the environments' episodes")
@@ -242,11 +244,29 @@ def evaluate(model, env, episodes: int, seed: int) -> dict:
             "mean_return": float(np.mean(returns)), "outcomes": outcomes}
 
 
-def anchor_loss(actor, reference, obs):
-    """Mean squared distance between two SB3 actors' deterministic (tanh-squashed) actions on `obs`.
-    Measured on actions, not on the pre-tanh means, so a saturated action may keep any mean beyond it:
-    only a change of behaviour costs."""
-    return ((actor(obs, deterministic=True) - reference(obs, deterministic=True)) ** 2).sum(dim=-1).mean()
+def anchor_loss(actor, reference, obs, weights=None):
+    """Mean squared distance between two SB3 actors' deterministic (tanh-squashed) actions on `obs`, each action's
+    square times its weight (`weights`: one per action; None = 1 each). Measured on actions, not on the pre-tanh
+    means, so a saturated action may keep any mean beyond it: only a change of behaviour costs."""
+    squares = (actor(obs, deterministic=True) - reference(obs, deterministic=True)) ** 2
+    if weights is not None:
+        squares = squares * weights
+    return squares.sum(dim=-1).mean()
+
+
+def anchor_weights(text: str, action_size: int) -> list[float]:
+    """--anchor-weight as one weight per action: 'W' for every action, or 'W1,W2,...' one per action.
+    Refuses, naming the flag, a count that is neither 1 nor the action size, or a negative weight."""
+    try:
+        weights = [float(w) for w in text.split(",")]
+    except ValueError:
+        raise SystemExit(f"--anchor-weight {text}: give a number, or one per action separated by commas") from None
+    if len(weights) == 1:
+        weights *= action_size
+    if len(weights) != action_size or min(weights) < 0:
+        raise SystemExit(f"--anchor-weight {text}: give one weight >= 0, or {action_size} (one per action of the "
+                         f"task's action layout)")
+    return weights
 
 
 class SACWithActorRate(SAC):
@@ -298,11 +318,11 @@ class ActorUpdates(BaseCallback):
     replayed batch back towards ``reference`` (the starting actor; None = no anchor). SB3's SAC.train()
     calls zero_grad, actor_loss.backward, step; the anchor's gradient is added in between, in step."""
 
-    def __init__(self, freeze_steps: int, reference=None, anchor_weight: float = 0.0, batch_size: int = 256):
+    def __init__(self, freeze_steps: int, reference=None, anchor_weights=None, batch_size: int = 256):
         super().__init__()
         self.freeze_steps = freeze_steps
         self.reference = reference
-        self.anchor_weight = anchor_weight
+        self.anchor_weights = anchor_weights  # a tensor, one weight per action
         self.batch_size = batch_size
         self.frozen = freeze_steps > 0
 
@@ -314,8 +334,8 @@ class ActorUpdates(BaseCallback):
                 return None
             if self.reference is not None:
                 obs = self.model.replay_buffer.sample(self.batch_size).observations
-                loss = anchor_loss(self.model.actor, self.reference, obs)
-                (self.anchor_weight * loss).backward()
+                loss = anchor_loss(self.model.actor, self.reference, obs, self.anchor_weights)
+                loss.backward()
                 self.logger.record("train/anchor_loss", loss.item())
             return type(actor_opt).step(actor_opt, *args, **kwargs)
 
@@ -446,6 +466,14 @@ def latest_checkpoint(out: Path) -> tuple[int, Path, Path] | None:
     return max(found, key=lambda f: (f[0], f[1].name == "final_model.zip")) if found else None
 
 
+def same(key: str, saved, value) -> bool:
+    """A saved setting equals this one; the anchor weight is compared as numbers (a run before 2026-12-06 saved it as
+    one float, now it is text: one weight or one per action)."""
+    if key == "anchor_weight":
+        return [float(w) for w in str(saved).split(",")] == [float(w) for w in str(value).split(",")]
+    return saved == value
+
+
 def check_resumable(s: Settings, out: Path) -> tuple[int, Path, Path]:
     """The checkpoint --resume continues from; the run's settings must be these (but for the steps, the
     time budget, the progress bar, torch's thread count and resume itself)."""
@@ -454,7 +482,7 @@ def check_resumable(s: Settings, out: Path) -> tuple[int, Path, Path]:
         raise SystemExit(f"--resume: {saved_path} not found: no run to continue in {out}")
     saved = json.loads(saved_path.read_text())
     free = {"total_steps", "max_minutes", "progress", "resume", "torch_threads"}
-    differ = [k for k, v in dataclasses.asdict(s).items() if k not in free and k in saved and saved[k] != v]
+    differ = [k for k, v in dataclasses.asdict(s).items() if k not in free and k in saved and not same(k, saved[k], v)]
     if differ:
         raise SystemExit("--resume: settings differ from the run's settings.json: " +
                          ", ".join(f"{k} = {getattr(s, k)!r} (run: {saved[k]!r})" for k in differ))
@@ -504,10 +532,12 @@ def make_environments(s: Settings, out: Path, record: dict, resume_from, resumed
     return vec_env, eval_env, ray_actors
 
 
-def make_model(s: Settings, out: Path, vec_env, eval_env, resume_from) -> SACWithActorRate:
+def make_model(s: Settings, out: Path, vec_env, eval_env, resume_from):
     """Model phase. In: the settings, the environments and --resume's checkpoint. Out: the SAC model with the
     paper's settings: the run's own state (--resume), --init-model's networks or fresh ones, the actor from
-    --init-actor if given; it logs to out/logs."""
+    --init-actor if given (not over a resumed run's own); it logs to out/logs. And the anchor's reference (None
+    without --anchor-weight): a frozen copy of the actor the run started from (--init-actor's or --init-model's,
+    a resumed run's too; a run from scratch: its first actor)."""
     # the actor may get its own learning rate (SACWithActorRate)
     sac_settings = dict(
         learning_rate=s.learning_rate, buffer_size=s.buffer_size, batch_size=s.batch_size, gamma=s.gamma,
@@ -526,6 +556,8 @@ def make_model(s: Settings, out: Path, vec_env, eval_env, resume_from) -> SACWit
     else:
         model = SACWithActorRate("MlpPolicy", vec_env, ent_coef=s.ent_coef,
                                  policy_kwargs={"net_arch": [int(n) for n in s.net_arch.split(",")]}, **sac_settings)
+    # the actor the run started from, the anchor's reference: a resumed run keeps its own actor
+    kept = copy.deepcopy(model.actor.state_dict()) if resume_from else None
     if s.init_actor:  # a shipped actor without its critics: only the mean is kept, the critics start fresh
         from guidewire_nav.export_actor import load_actor_json, widen_to_push_pull, widen_to_tip_force
 
@@ -537,23 +569,32 @@ def make_model(s: Settings, out: Path, vec_env, eval_env, resume_from) -> SACWit
         if spec.get("obs_layout") == "guidewire-nav/obs/8" and start_actor.get("obs_layout") == "guidewire-nav/obs/5":
             start_actor = widen_to_tip_force(start_actor)  # the tip-force input starts with zero weights
         load_actor_json(model, start_actor, log_std=s.init_log_std)
+    elif s.init_model and resume_from:
+        model.actor.load_state_dict(SAC.load(s.init_model, device="cpu").actor.state_dict())
+    reference = None
+    if max(anchor_weights(s.anchor_weight, model.action_space.shape[0])) > 0:
+        reference = copy.deepcopy(model.actor).requires_grad_(False)
+    if kept is not None:
+        model.actor.load_state_dict(kept)
     model.set_logger(configure(str(out / "logs"), ["csv", "tensorboard"]))
-    return model
+    return model, reference
 
 
-def learn(s: Settings, out: Path, model, eval_env, resume_from) -> tuple[list[dict], float]:
-    """Learning-loop phase. In: the settings, the model, the evaluation environment and --resume's checkpoint.
+def learn(s: Settings, out: Path, model, reference, eval_env, resume_from) -> tuple[list[dict], float]:
+    """Learning-loop phase. In: the settings, the model, the anchor's reference (make_model), the evaluation
+    environment and --resume's checkpoint.
     Learns up to --total-steps with the callbacks (actor freeze and anchor, periodic evaluation keeping
     out/best_model.zip, checkpoints), saves out/final_model.zip and final_replay_buffer.pkl, evaluates the final
     model if the last evaluation was not at its step. Out: (the evaluations, a resumed run's earlier ones first;
     the wall time in s)."""
     # --- callbacks: actor freeze and anchor (fine-tuning), periodic evaluation keeping the best actor,
     # checkpoints
-    reference = copy.deepcopy(model.actor).requires_grad_(False) if s.anchor_weight > 0 else None
+    weights = torch.tensor(anchor_weights(s.anchor_weight, model.action_space.shape[0]), dtype=torch.float32,
+                           device=model.device)
     evals: list[dict] = []
     start = time.time()
     eval_cb = EvalCallback(s, eval_env, out, evals, start)
-    callbacks = CallbackList([ActorUpdates(s.actor_freeze_steps, reference, s.anchor_weight, s.batch_size), eval_cb,
+    callbacks = CallbackList([ActorUpdates(s.actor_freeze_steps, reference, weights, s.batch_size), eval_cb,
                               CheckpointCallback(max(1, s.checkpoint_every // s.envs), str(out / "checkpoints"),
                                                  name_prefix="sac", save_replay_buffer=True)])
 
@@ -632,10 +673,10 @@ def main(argv=None) -> int:
     vec_env, eval_env, ray_actors = make_environments(s, out, record, resume_from, resumed_at)
 
     # --- SAC with the paper's settings (or the run's latest checkpoint with --resume)
-    model = make_model(s, out, vec_env, eval_env, resume_from)
+    model, reference = make_model(s, out, vec_env, eval_env, resume_from)
 
     # --- learn, with periodic evaluation and checkpoints
-    evals, wall = learn(s, out, model, eval_env, resume_from)
+    evals, wall = learn(s, out, model, reference, eval_env, resume_from)
 
     # --- saving: the best actor for the C++ runtime, the summary, the training curve
     summary = export_run(s, out, model, eval_env, evals, record, command, commit, wall)

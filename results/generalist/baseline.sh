@@ -1,15 +1,28 @@
 #!/usr/bin/env bash
-# The generalist's starting point on the validation episodes select.sh scores: the shipped push/pull actor with its
-# own task (training/tasks/push_pull.json: act/2, obs/5, recovery 3), the same pool, step-time limit and episodes, so
-# that results/generalist/compare.py pairs them episode by episode. Never a test row.
+# The generalist's reference points on the validation episodes select.sh scores, with the same pool, step-time limit
+# and episodes, so that results/generalist/compare.py pairs them episode by episode. Never a test row.
+#   start      the run's start as train.sh builds it: the shipped rotation actor widened to act/2 and obs/8
+#              (export_actor.widen_to_push_pull, widen_to_tip_force: its aim, a near-constant push, the new inputs
+#              unread), with the run's task training/tasks/generalist.json
+#   push_pull  the shipped push/pull actor with its own task (training/tasks/push_pull.json: act/2, obs/5, recovery 3)
 #   EPISODES=0:100 bash results/generalist/baseline.sh     # then: python results/generalist/compare.py A B
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 source results/generalist/validation_pool.sh  # RUN, POOL, EPISODES -> range and tag; the pool drawn
-out="$RUN/selection/push_pull$tag"
-if [ ! -f "$out/results.json" ]; then
-  build/apps/evaluate --rows "$POOL/index.json" --controllers policy --policy policy/trained/sac_actor_push_pull.json \
-    --task training/tasks/push_pull.json --reachability-seeds 0 --step-time-limit 1 --threads 2 "${range[@]}" \
-    --out "$out" > /dev/null
-fi
-echo "$out/results.json"
+mkdir -p "$RUN/selection"
+start="$RUN/selection/start_actor.json"
+[ -f "$start" ] || .venv/bin/python -c '
+import json, sys
+from guidewire_nav.export_actor import widen_to_push_pull, widen_to_tip_force
+d = widen_to_tip_force(widen_to_push_pull(json.load(open(sys.argv[1]))))
+json.dump(d, open(sys.argv[2], "w"))' policy/trained/sac_actor.json "$start"
+for name in start push_pull; do
+  out="$RUN/selection/$name$tag"
+  if [ "$name" = start ]; then actor=("$start" training/tasks/generalist.json)
+  else actor=(policy/trained/sac_actor_push_pull.json training/tasks/push_pull.json); fi
+  if [ ! -f "$out/results.json" ]; then
+    build/apps/evaluate --rows "$POOL/index.json" --controllers policy --policy "${actor[0]}" --task "${actor[1]}" \
+      --reachability-seeds 0 --step-time-limit 1 --threads 2 "${range[@]}" --out "$out" > /dev/null
+  fi
+  echo "$out/results.json"
+done

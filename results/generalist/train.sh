@@ -3,12 +3,16 @@
 # training pool (100 coronary trees drawn by gw-anatomy-pool, seed 1: docs/anatomy_pool.md) with the task
 # training/tasks/generalist.json (act/2: push, pull and rotate; obs/8: obs/5 and the tip's wall force; recovery 3, so
 # an episode goes on after a wrong child and pulling back is learnt; a cost of time and of wall force over 1.5 N).
-# Third version (2026-12-06; results/generalist/README.md): started from the shipped rotation actor (its inputs
-# widened to obs/8 with zero weights, its insertion output pushing), whose aim reaches 88 of the first 100
-# validation episodes, with its rotation anchored to the start (--anchor-weight 10,0: ten times the squared change
-# of the rotation action on replayed states; the insertion is free), the actor held for its first 10,000 steps, and a
-# discount of 0.995 (a horizon of ~200 env steps, an episode's length, where the paper's 0.98 sees ~50: with the speed
-# in the actor's hands, finishing sooner has to be worth something to the critic; results/generalist/README.md).
+# Fourth version (2026-12-06; results/generalist/README.md "Third version" has the two tries before it): started from
+# the shipped rotation actor (its inputs widened to obs/8 with zero weights, its insertion output pushing), whose aim
+# reaches 88 of the first 100 validation episodes. The actor is held for its first 10,000 steps while the critics
+# learn, and its insertion explores meanwhile (--init-log-std -2.3,0.5: the rotation's std 0.1 before tanh, the
+# insertion's 1.6, so the critics see slower pushes and pulls, not only the start's constant push; a critic that
+# had seen only that push told the actor to pull everywhere). Then both actions are anchored to the start's
+# (--anchor-weight 10,1: the rotation firmly, the insertion lightly, so it leaves the push only where the critics'
+# preference outweighs it), every transition is kept (--buffer-size 200000: the pushes of the start stay in the
+# critics' data), and the discount is 0.995 (a horizon of ~200 env steps, an episode's length, where the paper's
+# 0.98 sees ~50: with the speed in the actor's hands, finishing sooner has to be worth something to the critic).
 # Two gradient steps per four env steps (docs/training.md "Where a training step's time goes": as good per wall
 # minute as one per step, 2.5 times the env steps; the networks stay 3x256). An env step that takes more than 1 s of
 # wall time ends its episode (--step-cutoff: a wire jammed in a 0.3 mm vessel simulates up to 55 times slower,
@@ -36,8 +40,8 @@ fi
 resume=()
 if [ -f "$OUT/settings.json" ]; then resume=(--resume); fi  # a run already started: go on from its last checkpoint
 .venv/bin/gw-train --anatomies "$POOL/index.json" --task training/tasks/generalist.json \
-  --init-actor policy/trained/sac_actor.json --anchor-weight 10,0 --actor-freeze-steps 10000 --learning-starts 300 \
-  --gamma 0.995 --ent-coef auto_0.02 \
+  --init-actor policy/trained/sac_actor.json --init-log-std=-2.3,0.5 --actor-freeze-steps 10000 --learning-starts 300 \
+  --anchor-weight 10,1 --buffer-size 200000 --gamma 0.995 --ent-coef auto_0.02 \
   --train-freq 4 --gradient-steps 2 --total-steps 400000 --envs 2 --eval-episodes 0 --checkpoint-every 10000 \
   --step-cutoff 1 --no-progress --torch-threads 1 \
   --max-minutes "$MINUTES" --seed 1 --out "$OUT" "${resume[@]}"

@@ -248,6 +248,10 @@ def test_anchor_weights_one_for_every_action_or_one_per_action():
     for bad in ("1,2,3", "-1", "ten"):
         with pytest.raises(SystemExit, match="--anchor-weight"):
             anchor_weights(bad, 2)
+    from guidewire_nav.train import per_action  # --init-log-std: any sign, one or one per action
+    assert per_action("--init-log-std", "-2.3,0.5", 2) == [-2.3, 0.5] and per_action("--init-log-std", "-2", 2) == [-2, -2]
+    with pytest.raises(SystemExit, match="--init-log-std -1,0,1: give one number, or 2"):
+        per_action("--init-log-std", "-1,0,1", 2)
 
     class Fixed(torch.nn.Module):  # an actor whose deterministic action is a constant
         def __init__(self, action):

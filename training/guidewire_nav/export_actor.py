@@ -195,11 +195,12 @@ def widen_to_tip_force(d: dict) -> dict:
     return out
 
 
-def load_actor_json(model, path, log_std: float = -2.3) -> dict:
+def load_actor_json(model, path, log_std: float | list = -2.3) -> dict:
     """The inverse of the export, for fine-tuning a shipped actor whose critic was not kept: copy the
     JSON's layers (`path`: a file, or the dictionary itself) into `model`'s actor (latent_pi + mu) and
     return the dictionary. The JSON holds only
-    the deterministic mean, so the log-std head is set to a constant `log_std` (zero weights): -2.3 gives
+    the deterministic mean, so the log-std head is set to a constant `log_std` (zero weights; one value, or one
+    per action): -2.3 gives
     std ~0.1 before tanh, about what SAC's automatic entropy (target -1 for one action) settles at.
     Refuses, naming the mismatch, an actor whose layer shapes, activations, action bounds or observation
     normalisation differ from what `model` computes, rather than loading it half."""
@@ -229,7 +230,7 @@ def load_actor_json(model, path, log_std: float = -2.3) -> dict:
             layer.weight.copy_(torch.tensor(saved["weight"]).reshape(saved["shape"]))
             layer.bias.copy_(torch.tensor(saved["bias"]))
         actor.log_std.weight.zero_()
-        actor.log_std.bias.fill_(log_std)
+        actor.log_std.bias.copy_(torch.as_tensor(log_std, dtype=actor.log_std.bias.dtype).expand_as(actor.log_std.bias))
     return d
 
 

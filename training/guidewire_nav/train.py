@@ -54,8 +54,9 @@ class Settings:
     init_actor: str = arg("", "fine-tune: start the actor from an exported actor JSON (fresh critics); when "
                               "the task's action is act/2 a rotation actor (obs/3, act/1) starts the rotation output, the "
                               "insertion output starts pushing (export_actor.widen_to_push_pull)")
-    init_log_std: float = arg(-2.3, "with --init-actor: its log-std head (the JSON has only the mean); -2.3 = std "
-                                    "~0.1 before tanh")
+    init_log_std: str = arg("-2.3", "with --init-actor: its log-std head (the JSON has only the mean); -2.3 = std "
+                                    "~0.1 before tanh; one value for every action, or one per action (act/2: "
+                                    "rotation,insertion; '-2.3,0.5' explores the speed while the actor is held)")
     actor_freeze_steps: int = arg(0, "environment steps the actor (and entropy coefficient) stay fixed while fresh "
                                      "critics learn its values; then ordinary SAC")
     anchor_weight: str = arg("0", "fine-tune: adds W * |a(s) - a_start(s)|^2 (deterministic actions on replayed "
@@ -254,19 +255,25 @@ def anchor_loss(actor, reference, obs, weights=None):
     return squares.sum(dim=-1).mean()
 
 
-def anchor_weights(text: str, action_size: int) -> list[float]:
-    """--anchor-weight as one weight per action: 'W' for every action, or 'W1,W2,...' one per action.
-    Refuses, naming the flag, a count that is neither 1 nor the action size, or a negative weight."""
+def per_action(flag: str, text: str, action_size: int, minimum: float | None = None) -> list[float]:
+    """A flag's value as one number per action: 'X' for every action, or 'X1,X2,...' one per action. Refuses, naming
+    the flag, a count that is neither 1 nor the action size, or a number below `minimum`."""
     try:
-        weights = [float(w) for w in text.split(",")]
+        values = [float(v) for v in text.split(",")]
     except ValueError:
-        raise SystemExit(f"--anchor-weight {text}: give a number, or one per action separated by commas") from None
-    if len(weights) == 1:
-        weights *= action_size
-    if len(weights) != action_size or min(weights) < 0:
-        raise SystemExit(f"--anchor-weight {text}: give one weight >= 0, or {action_size} (one per action of the "
-                         f"task's action layout)")
-    return weights
+        raise SystemExit(f"{flag} {text}: give a number, or one per action separated by commas") from None
+    if len(values) == 1:
+        values *= action_size
+    if len(values) != action_size or (minimum is not None and min(values) < minimum):
+        bound = f" >= {minimum:g}" if minimum is not None else ""
+        raise SystemExit(f"{flag} {text}: give one number{bound}, or {action_size} (one per action of the task's "
+                         f"action layout)")
+    return values
+
+
+def anchor_weights(text: str, action_size: int) -> list[float]:
+    """--anchor-weight as one weight >= 0 per action."""
+    return per_action("--anchor-weight", text, action_size, minimum=0.0)
 
 
 class SACWithActorRate(SAC):
@@ -468,8 +475,8 @@ def latest_checkpoint(out: Path) -> tuple[int, Path, Path] | None:
 
 def same(key: str, saved, value) -> bool:
     """A saved setting equals this one; the anchor weight is compared as numbers (a run before 2026-12-06 saved it as
-    one float, now it is text: one weight or one per action)."""
-    if key == "anchor_weight":
+    one float, now it is text: one weight or one per action; the initial log-std likewise)."""
+    if key in ("anchor_weight", "init_log_std"):
         return [float(w) for w in str(saved).split(",")] == [float(w) for w in str(value).split(",")]
     return saved == value
 
@@ -568,7 +575,8 @@ def make_model(s: Settings, out: Path, vec_env, eval_env, resume_from):
             start_actor = widen_to_push_pull(start_actor)
         if spec.get("obs_layout") == "guidewire-nav/obs/8" and start_actor.get("obs_layout") == "guidewire-nav/obs/5":
             start_actor = widen_to_tip_force(start_actor)  # the tip-force input starts with zero weights
-        load_actor_json(model, start_actor, log_std=s.init_log_std)
+        load_actor_json(model, start_actor, log_std=per_action("--init-log-std", s.init_log_std,
+                                                               model.action_space.shape[0]))
     elif s.init_model and resume_from:
         model.actor.load_state_dict(SAC.load(s.init_model, device="cpu").actor.state_dict())
     reference = None

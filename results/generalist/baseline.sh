@@ -13,8 +13,8 @@ mkdir -p "$RUN/selection"
 start="$RUN/selection/start_actor.json"
 [ -f "$start" ] || .venv/bin/python -c '
 import json, sys
-from guidewire_nav.export_actor import widen_to_push_pull, widen_to_tip_force
-d = widen_to_tip_force(widen_to_push_pull(json.load(open(sys.argv[1]))))
+from guidewire_nav.export_actor import widen_for_task
+d = widen_for_task(json.load(open(sys.argv[1])), "guidewire-nav/obs/8", "guidewire-nav/act/2")
 json.dump(d, open(sys.argv[2], "w"))' policy/trained/sac_actor.json "$start"
 for name in start push_pull; do
   out="$RUN/selection/$name$tag"

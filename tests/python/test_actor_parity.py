@@ -165,3 +165,19 @@ def test_widened_push_pull_actor_starts_the_tip_force_actor(tmp_path):
     assert np.max(np.abs(after - before)) < 1e-6
     with pytest.raises(ValueError, match="obs/5 push/pull actor"):
         widen_to_tip_force(widened)
+
+
+def test_widen_for_task_widens_as_the_task_needs():
+    """The start of a task of given layouts: a rotation actor for obs/8 act/2 is widened twice (rotation kept, the
+    insertion pushing, two and one new inputs), for obs/5 act/2 once; a push/pull actor in its own task is untouched."""
+    import json
+
+    from guidewire_nav.export_actor import widen_for_task, widen_to_push_pull, widen_to_tip_force
+
+    trained = Path(__file__).resolve().parents[2] / "policy" / "trained"
+    rotation = json.loads((trained / "sac_actor.json").read_text())
+    push_pull = json.loads((trained / "sac_actor_push_pull.json").read_text())
+    both = widen_for_task(rotation, "guidewire-nav/obs/8", "guidewire-nav/act/2")
+    assert both == widen_to_tip_force(widen_to_push_pull(rotation)) and both["obs_size"] == 15
+    assert widen_for_task(rotation, "guidewire-nav/obs/5", "guidewire-nav/act/2") == widen_to_push_pull(rotation)
+    assert widen_for_task(push_pull, "guidewire-nav/obs/5", "guidewire-nav/act/2") is push_pull

@@ -195,6 +195,17 @@ def widen_to_tip_force(d: dict) -> dict:
     return out
 
 
+def widen_for_task(d: dict, obs_layout: str, action_layout: str) -> dict:
+    """An actor as the start of a task of these layouts: a rotation actor (act/1) starting an act/2 task is widened by
+    widen_to_push_pull, an obs/5 actor starting an obs/8 task by widen_to_tip_force (both, in turn, for a rotation
+    actor starting an obs/8 act/2 task); any other actor is returned as it is."""
+    if action_layout == "guidewire-nav/act/2" and d.get("action_size") == 1:
+        d = widen_to_push_pull(d)
+    if obs_layout == "guidewire-nav/obs/8" and d.get("obs_layout") == "guidewire-nav/obs/5":
+        d = widen_to_tip_force(d)
+    return d
+
+
 def load_actor_json(model, path, log_std: float | list = -2.3) -> dict:
     """The inverse of the export, for fine-tuning a shipped actor whose critic was not kept: copy the
     JSON's layers (`path`: a file, or the dictionary itself) into `model`'s actor (latent_pi + mu) and

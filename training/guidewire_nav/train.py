@@ -167,8 +167,7 @@ def with_actor_layouts(task: dict, actor_path: str) -> dict:
     """--init-actor: the task takes the actor's observation and action layouts (its obs_layout, action_layout) where
     it does not name them, so an actor fine-tunes in its own task (the paper's obs/1 actor needs no --task); a task
     that names other layouts is refused, naming both. The mismatches allowed are the widenings: a rotation actor
-    (act/1) starting an act/2 task (export_actor.widen_to_push_pull), an obs/5 actor starting an obs/8 task
-    (export_actor.widen_to_tip_force), or both."""
+    (act/1) starting an act/2 task, an obs/5 actor starting an obs/8 task, or both (export_actor.widen_for_task)."""
     actor = read_json_argument("--init-actor", actor_path, "give an exported actor JSON")
     if not isinstance(actor, dict):
         raise SystemExit(f"--init-actor: {actor_path}: not an actor JSON (an object with obs_layout and layers)")
@@ -566,15 +565,11 @@ def make_model(s: Settings, out: Path, vec_env, eval_env, resume_from):
     # the actor the run started from, the anchor's reference: a resumed run keeps its own actor
     kept = copy.deepcopy(model.actor.state_dict()) if resume_from else None
     if s.init_actor:  # a shipped actor without its critics: only the mean is kept, the critics start fresh
-        from guidewire_nav.export_actor import load_actor_json, widen_to_push_pull, widen_to_tip_force
+        from guidewire_nav.export_actor import load_actor_json, widen_for_task
 
-        start_actor = json.loads(Path(s.init_actor).read_text())
         spec = eval_env.unwrapped.spec_reply  # the task's layouts, as the server says them
-        if spec.get("action_layout") == "guidewire-nav/act/2" and start_actor.get("action_size") == 1:
-            # a rotation actor starts the push/pull one
-            start_actor = widen_to_push_pull(start_actor)
-        if spec.get("obs_layout") == "guidewire-nav/obs/8" and start_actor.get("obs_layout") == "guidewire-nav/obs/5":
-            start_actor = widen_to_tip_force(start_actor)  # the tip-force input starts with zero weights
+        start_actor = widen_for_task(json.loads(Path(s.init_actor).read_text()), spec.get("obs_layout"),
+                                     spec.get("action_layout"))
         load_actor_json(model, start_actor, log_std=per_action("--init-log-std", s.init_log_std,
                                                                model.action_space.shape[0]))
     elif s.init_model and resume_from:

@@ -7,7 +7,8 @@
 # figures (with the tip within 1.5 N) of each, by results/pool_validation/summarize.py, into RUN/selection/summary.json.
 #   bash results/generalist/select.sh            # after results/generalist/train.sh
 # On 2 cores each checkpoint takes several minutes: STEPS="300000 400000" scores only those checkpoints, and
-# EPISODES=0:100 only the first 100 episodes (kept apart: RUN/selection/STEP_e0-100).
+# EPISODES=0:100 only the first 100 episodes (kept apart: RUN/selection/STEP_e0-100); THREADS=1 runs it on one
+# core (beside another job on the other: each episode then has a core to itself, as with 2 threads on a quiet machine).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 source results/generalist/validation_pool.sh  # RUN, POOL, EPISODES -> range and tag; the pool drawn
@@ -22,7 +23,7 @@ for zip in "$RUN"/checkpoints/sac_*_steps.zip; do
   [ -f "$actor" ] || .venv/bin/gw-export "$zip" "$actor" --obs-layout guidewire-nav/obs/8 > /dev/null
   if [ ! -f "$RUN/selection/$step$tag/results.json" ]; then
     build/apps/evaluate --rows "$POOL/index.json" --controllers policy --policy "$actor" \
-      --task training/tasks/generalist.json --reachability-seeds 0 --step-time-limit 1 --threads 2 \
+      --task training/tasks/generalist.json --reachability-seeds 0 --step-time-limit 1 --threads "${THREADS:-2}" \
       "${range[@]}" --out "$RUN/selection/$step$tag" > /dev/null
   fi
   results+=("$RUN/selection/$step$tag/results.json")

@@ -15,6 +15,27 @@ struct ElementLinearisation {
   Vec12 rhs;
 };
 
+// The element's force resultant n = (EA, kGA, kGA) Gamma [mN] turns with its chord: a string's stiffness
+// |n| / l (I - t t^T) on the ends' translations (t the chord's direction), added to K for both signs of n.
+// The Gauss-Newton K leaves this geometric part out, so a wire loaded hard (a tip pushed into a jam at
+// 10-100 N) met it explicitly and chattered: a 0.5 mm tip element at 10 N has |n| / l = 2e4 mN/mm against a
+// half-element mass of 1.6e-7 kg, stable explicitly below ~6 us. Added to both sides of the linearised
+// step (to A and to the -s K v of the right-hand side), it is a force -(beta + dt) |n| / l (I - t t^T) v_new
+// on the ends' relative transverse velocity: no change to any static equilibrium, damping where the wire is
+// loaded. In compression it is the true geometric stiffness with its sign turned (which would make A
+// indefinite), so it over-damps there; docs/physics.md "A jammed wire" has its measured effect.
+void add_resultant_stiffness(const WireState& st, int e, const Vec6& c, const BeamElementEval& ev, double s, Mat12& k) {
+  const double resultant = Eigen::Vector3d(c[0] * ev.strain[0], c[1] * ev.strain[1], c[2] * ev.strain[2]).norm();
+  const Eigen::Vector3d chord = st.x[e + 1] - st.x[e];
+  const double len = chord.norm();
+  const Eigen::Vector3d t = chord / len;
+  const Eigen::Matrix3d pk = (s * resultant / len) * (Eigen::Matrix3d::Identity() - t * t.transpose());
+  k.block<3, 3>(0, 0) += pk;
+  k.block<3, 3>(6, 6) += pk;
+  k.block<3, 3>(0, 6) -= pk;
+  k.block<3, 3>(6, 0) -= pk;
+}
+
 void linearise_element(const WireModel& model, const WireState& st, int e, const BeamElementEval& ev,
                        const Vec6& held_dv, bool held_a, double dt, ElementLinearisation& out) {
   const double s = dt * model.params.damping_stiffness + dt * dt;
@@ -26,6 +47,7 @@ void linearise_element(const WireModel& model, const WireState& st, int e, const
   Vec12 ve;
   ve << st.v[e], st.w[e], st.v[e + 1], st.w[e + 1];
   out.rhs.noalias() = (-dt * l) * jtc * ev.strain;  // dt * force
+  add_resultant_stiffness(st, e, c, ev, s, out.k);
   out.rhs.noalias() -= out.k * ve;
   if (held_a) out.rhs.tail<6>().noalias() -= out.k.block<6, 6>(6, 0) * held_dv;
 }

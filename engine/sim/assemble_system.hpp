@@ -2,7 +2,9 @@
 // Stage "assemble": the linearised implicit Euler system of the free (inserted) nodes (paper Eq. 1),
 //   (M (1 + dt alpha) + (dt beta + dt^2) K) dv = dt f - dt alpha M v - (dt beta + dt^2) K v - A_FH dv_H,
 // with Rayleigh damping D = alpha M + beta K, K = -df/dx the beam tangent stiffness (Gauss-Newton part
-// l J^T C J, symmetric positive semi-definite) and dv_H the change of the introducer's velocity.
+// l J^T C J, symmetric positive semi-definite, plus each element's force resultant as a string, |n| / l
+// (I - t t^T) on its ends' translations: see add_resultant_stiffness) and dv_H the change of the introducer's
+// velocity.
 // Unknowns: per free node (dv, domega), 6 DOF, nodes first_free..N-1 in order -> block tridiagonal.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>

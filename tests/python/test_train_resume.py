@@ -84,7 +84,8 @@ def test_resume_continues_the_run_from_its_checkpoint(tmp_path):
 def test_a_resumed_fine_tune_goes_on_with_its_own_actor_anchored_to_its_start(tmp_path):
     """--resume of an --init-actor run continues from the checkpoint's actor (not the start's again), while the
     anchor still pulls towards the actor the run started from. A fast actor rate moves the actor far in the first
-    part; the resumed part, cut after a moment by --max-minutes, ends next to that actor, far from the start."""
+    part; the resumed part, cut after a moment by --max-minutes (a few steps, as many as the machine's speed lets it
+    take, each moving the actor at that rate), ends nearer that actor than the start."""
     import torch
     from stable_baselines3 import SAC
     from guidewire_nav.train import anchor_loss
@@ -104,7 +105,8 @@ def test_a_resumed_fine_tune_goes_on_with_its_own_actor_anchored_to_its_start(tm
     with torch.no_grad():
         moved = anchor_loss(part1, start, obs).item()
         assert moved > 1e-3  # the first part left its start
-        assert anchor_loss(last, part1, obs).item() < 0.1 * moved  # the resumed part went on from there
+        went_on = anchor_loss(last, part1, obs).item()
+        assert went_on < 0.5 * anchor_loss(last, start, obs).item()  # the resumed part went on from there
 
 
 def test_resume_counts_the_transitions_of_every_env(tmp_path, capsys):

@@ -54,6 +54,7 @@ TEST_CASE("block-tridiagonal solve equals dense LDLT on random SPD systems", "[s
     inverse_diagonal_blocks(f, sigma);
     const Eigen::MatrixXd inv = d.inverse();
     for (int i = 0; i < n; ++i) CHECK((sigma[i] - inv.block<6, 6>(6 * i, 6 * i)).norm() <= 1e-12 * inv.norm());
+    for (int i = 0; i < n; ++i) CHECK(f.s_inv[i] == f.s_inv[i].transpose());  // the pivots' inverses, exactly symmetric
     if (n >= 5) {
       Mat6 chain = -f.g[1];
       for (int j = 2; j < 4; ++j) chain = (chain * (-f.g[j])).eval();

@@ -231,15 +231,14 @@ void start_impulses(const std::vector<ContactPoint>& contacts, bool warm_start, 
   }
 }
 
-// Projected Gauss-Seidel sweeps (at most `iterations`, friction coefficient mu) on ws.impulse and ws.u, until
-// the tolerances of solve_contact_impulses; the sweeps done, the last relative change and whether a
-// tolerance stopped them into `res`.
-void gauss_seidel_sweeps(const std::vector<ContactPoint>& contacts, double mu, int iterations,
-                         double velocity_tolerance, ContactWorkspace& ws, int m, int dim, ContactSolveResult& res) {
+// Projected Gauss-Seidel sweeps (at most `iterations`, friction coefficient mu) on ws.impulse and ws.u;
+// the sweeps done and the last relative change into `res`.
+void gauss_seidel_sweeps(const std::vector<ContactPoint>& contacts, double mu, int iterations, ContactWorkspace& ws,
+                         int m, int dim, ContactSolveResult& res) {
   auto p = ws.impulse.head(dim);
   auto u = ws.u.head(dim);
   for (int it = 0; it < iterations; ++it) {
-    double change = 0, largest = 1e-300, moved = 0;  // moved: the largest |W_ii dp_i| of the sweep [mm/s]
+    double change = 0, largest = 1e-300;
     for (int ci = 0; ci < m; ++ci) {
       const int r = 3 * ci;
       // Not pressing and still separating: the projection keeps all three impulses at zero.
@@ -260,27 +259,21 @@ void gauss_seidel_sweeps(const std::vector<ContactPoint>& contacts, double mu, i
       u.noalias() += ws.w.block(0, r, dim, 3) * delta;
       p.segment<3>(r) += delta;
       change = std::max(change, delta.cwiseAbs().maxCoeff());
-      moved = std::max(moved, wd.diagonal().cwiseProduct(delta).cwiseAbs().maxCoeff());
       largest = std::max(largest, p.segment<3>(r).cwiseAbs().maxCoeff());
     }
     res.iterations = it + 1;
     res.residual = change / largest;
-    res.converged = res.residual < kContactSweepTolerance || moved < velocity_tolerance;
-    if (res.converged) break;
+    if (res.residual < kContactSweepTolerance) break;
   }
 }
 
 }  // namespace
 
 ContactSolveResult solve_contact_impulses(const std::vector<ContactPoint>& contacts, double dt, double mu,
-                                          int iterations, bool warm_start, ContactWorkspace& ws,
-                                          double velocity_tolerance) {
+                                          int iterations, bool warm_start, ContactWorkspace& ws) {
   ContactSolveResult res;
   const int m = static_cast<int>(contacts.size());
-  if (m == 0 || ws.nodes.empty()) {
-    res.converged = true;  // nothing to solve
-    return res;
-  }
+  if (m == 0 || ws.nodes.empty()) return res;
   const int dim = 3 * m;
   size_solve_workspace(ws, m, dim);
   contact_rows(contacts, ws, m);
@@ -290,7 +283,7 @@ ContactSolveResult solve_contact_impulses(const std::vector<ContactPoint>& conta
   // changes, and neither their column of W nor the update u += W_c dp_c is ever computed. A sweep costs
   // O(m) plus O(m) per contact whose impulse moved, instead of O(m^2).
   start_impulses(contacts, warm_start, ws, m, dim);
-  gauss_seidel_sweeps(contacts, mu, iterations, velocity_tolerance, ws, m, dim, res);
+  gauss_seidel_sweeps(contacts, mu, iterations, ws, m, dim, res);
   return res;
 }
 

@@ -42,7 +42,6 @@ struct ContactWorkspace {
 struct ContactSolveResult {
   int iterations = 0;
   double residual = 0;  // largest impulse change in the last sweep, relative to the largest impulse
-  bool converged = false;  // stopped by a tolerance, not by the sweep cap
 };
 
 // The sweeps stop when the last one changed no impulse by more than this, relative to the largest impulse;
@@ -55,12 +54,9 @@ void prepare_contact_compliance(const BlockTridiagonal& a, const BlockTridiagona
 
 // Step 2: W for the contacts' current directions, then projected Gauss-Seidel; impulses in ws.impulse
 // (3 per contact: n, t1, t2). `warm_start`: start from the normal impulses already in ws.impulse
-// (the caller's guess, e.g. the previous sub-step's); otherwise from zero. The sweeps stop after
-// `iterations`, or when one changed no impulse by more than kContactSweepTolerance of the largest, or (with
-// `velocity_tolerance` > 0, mm/s) no contact's velocity by more than that through its own impulse change.
+// (the caller's guess, e.g. the previous sub-step's); otherwise from zero.
 ContactSolveResult solve_contact_impulses(const std::vector<ContactPoint>& contacts, double dt, double mu,
-                                          int iterations, bool warm_start, ContactWorkspace& ws,
-                                          double velocity_tolerance = 0);
+                                          int iterations, bool warm_start, ContactWorkspace& ws);
 
 // Step 3: the velocity change A^-1 H^T p of the impulses, into ws.h_t_p (6 per free node).
 void contact_velocity_change(const BlockTridiagonal& a, const BlockTridiagonalFactor& f,

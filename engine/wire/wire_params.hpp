@@ -36,10 +36,6 @@ struct WireParams {
   double max_substep_s = 0.0005;
   double max_speed_mm_per_s = 1e5;     // any node faster than 100 m/s = exploding simulation
   int contact_iterations = 100;        // projected Gauss-Seidel sweeps per sub-step (at most)
-  // The sweeps also stop when the last one changed no contact's velocity through its own impulse change
-  // (|W_ii dp_i|, per row) by more than this [mm/s]: over a 0.5 ms sub-step, 0.5 um of position. 0: only the
-  // relative impulse change (1e-6) or the sweep cap stop them (the solver before 2026-12-06).
-  double contact_velocity_tolerance_mm_per_s = 1.0;
   // Friction with a lever arm: wall friction acts at the wire's surface (radius r from the axis), so its
   // tangential impulse also turns the wire (torque -r n x p_t on the rotational degrees of freedom) and
   // the wall can hold the wire's roll, winding up torsion that releases when it slips. Off (the paper's

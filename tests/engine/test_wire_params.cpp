@@ -24,7 +24,6 @@ TEST_CASE("the shipped 0.014 inch wire JSON loads and matches the defaults", "[p
   CHECK(p.young_modulus_kpa == d.young_modulus_kpa);
   CHECK(p.contact_margin_mm == d.contact_margin_mm);
   CHECK(p.contact_slack_mm == d.contact_slack_mm);
-  CHECK(p.contact_velocity_tolerance_mm_per_s == d.contact_velocity_tolerance_mm_per_s);
   CHECK(p.max_substep_s == d.max_substep_s);
   const WireModel m = make_wire_model(p, 0.01);
   CHECK(m.substeps == 20);
@@ -38,8 +37,6 @@ TEST_CASE("bad wire parameter files are refused with the file and field named", 
   CHECK_THROWS_WITH(load_wire_params(write_temp("{\"diameter_mm\": -1}")), Catch::Contains("diameter_mm"));
   CHECK_THROWS_WITH(load_wire_params(write_temp("{\"diameter_mm\": \"thin\"}")), Catch::Contains("must be a number"));
   CHECK_THROWS_WITH(load_wire_params(write_temp("{\"diametre_mm\": 0.3}")), Catch::Contains("unknown field 'diametre_mm'"));
-  CHECK_THROWS_WITH(load_wire_params(write_temp("{\"contact_velocity_tolerance_mm_per_s\": -1}")),
-                    Catch::Contains("contact_velocity_tolerance_mm_per_s"));
   CHECK_THROWS_WITH(load_wire_params(write_temp("[1, 2]")), Catch::Contains("expected a JSON object"));
   CHECK_THROWS_WITH(load_wire_params(write_temp("{oops")), Catch::Contains("not valid JSON"));
   CHECK_THROWS_WITH(make_wire_model(default_wire_params(), 0.0), Catch::Contains("dt"));

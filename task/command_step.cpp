@@ -17,7 +17,7 @@ StepCommand command_step(const NavigationTask& task, const EpisodeState& s, cons
   cmd.insertion = push_pull && s.in_control ? std::clamp(action.insertion, -1.0, 1.0) : 1.0;
   if (cmd.insertion < 0) {
     const double room_mm = s.wire.inserted_length_mm - c.initial_insertion_mm;
-    const double full_pull_mm = c.push_mm_per_s * c.frame_skip * c.dt_s;  // one env step at insertion -1
+    const double full_pull_mm = c.push_mm_per_s * env_dt(c);  // one env step at insertion -1
     cmd.insertion = room_mm <= 1e-9 ? 0.0 : std::max(cmd.insertion, -room_mm / full_pull_mm);
   }
   cmd.control = Control{cmd.insertion * c.push_mm_per_s, cmd.rotation * c.max_rotation_rad_per_s};

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # What an engine change that is not exact does (issue 62): speed and counts of bench-mechanics insertions, and the
 # table's outcomes, with this build against the one before. Used by resultant_stiffness.sh and
-# contact_tolerance.sh, which say what changed and where it was chosen.
+# pivot_inverse.sh, which say what changed and where it was chosen.
 # 1. bench-mechanics --scaling-substeps 1 on each of CASES: halvings, contact solves, deepest penetration, the share
 #    of contact solves stopped at the sweep cap, hash (counts, the same on any machine). With OLD=a bench-mechanics
 #    built at the commit before, each is also run with it, new and old in turn ROUNDS times (default 3), and the
@@ -13,7 +13,7 @@
 #    with each results.json of BEFORE (space-separated; default results/results.json, the published table) by
 #    equivalence.py. About 35 min on 2 cores.
 # Run from the repository root after `bash scripts/install.sh`:
-#   NAME=contact_tolerance CASES="jam coronary" WHAT="..." OLD=/path/to/old/bench-mechanics bash results/bench/engine_change.sh
+#   NAME=pivot_inverse CASES="jam coronary" WHAT="..." OLD=/path/to/old/bench-mechanics bash results/bench/engine_change.sh
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 NAME=${NAME:?give NAME: the change (results/bench/NAME.json, runs/equivalence/NAME)}

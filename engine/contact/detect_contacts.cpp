@@ -5,7 +5,9 @@
 #include <limits>
 #include <numeric>
 
+#include "engine/scene/closest_point_triangle.hpp"
 #include "engine/scene/moving_wall.hpp"
+#include "engine/scene/nearest_face.hpp"
 #include "engine/scene/wall_distance_by_grid.hpp"
 
 namespace gw {
@@ -26,7 +28,6 @@ bool contact_point_active(const WireModel& model, const WireState& state, int po
 }
 
 namespace {
-
 const double kMidpointMinLength = 1.0;  // mm
 
 // Re-gathers the candidates of one point around `p` within `radius`, sorted by distance lower bound.
@@ -201,6 +202,42 @@ WallDistance cached_wall_distance(const WireModel& model, const VesselScene& sce
   return current_frame_distance(model, scene, c, p, need, cutoff, t);
 }
 
+namespace {
+
+// The nearest wall of another side than `inward` (the inward normal of the nearest wall) for the point
+// `point` at p, within `reach`, among its static candidate list: triangles whose inward face normal turns
+// from `inward` by more than 60 degrees, then (to_wall_distance's smooth normal) checked again. triangle
+// -1: none.
+WallDistance other_wall_side(const VesselScene& scene, const WallCandidates& c, const Eigen::Vector3d& p,
+                             const Eigen::Vector3d& inward, double reach) {
+  NearestFace best(reach);
+  const double moved = (p - c.centre).norm();
+  for (std::size_t i = 0; i < c.triangles.size(); ++i) {
+    if (c.lower_bounds[i] - moved > reach) break;  // sorted
+    const int f = c.triangles[i];
+    const Eigen::Vector3d n = scene.face_normals.row(f).transpose();
+    if (same_wall_side(inward, -n)) continue;
+    const Eigen::Vector4d& sphere = scene.face_spheres[f];
+    if ((p - sphere.head<3>()).norm() - sphere[3] > reach) continue;
+    const Eigen::Matrix3d& tri = scene.face_corners[f];
+    int region = 0;
+    const Eigen::Vector3d q = closest_point_on_triangle(p, tri.col(0), tri.col(1), tri.col(2), region);
+    best.offer(f, static_cast<int>(i), q, p - q, (p - q).squaredNorm(), n);
+  }
+  WallDistance wd;
+  wd.triangle = -1;
+  if (best.triangle < 0) return wd;
+  const auto& V = scene.mesh.V;
+  const auto& F = scene.mesh.F;
+  const int f = best.triangle;
+  wd = to_wall_distance(best, V.row(F(f, 0)).transpose(), V.row(F(f, 1)).transpose(), V.row(F(f, 2)).transpose(),
+                        [&](int k) -> Eigen::Vector3d { return scene.vertex_normals.row(F(f, k)).transpose(); });
+  if (same_wall_side(inward, wd.inward)) wd.triangle = -1;
+  return wd;
+}
+
+}  // namespace
+
 bool same_wall_side(const Eigen::Vector3d& start_normal, const Eigen::Vector3d& mid_normal) {
   return start_normal.dot(mid_normal) >= 0.5;  // cos 60 degrees
 }
@@ -245,6 +282,17 @@ void detect_contacts(const WireModel& model, const VesselScene& scene, WireState
     c.t2 = c.n.cross(c.t1);
     c.gap = wd.signed_distance - r;
     c.v_free = v;
+    out.push_back(c);
+    if (c.gap >= -kCreaseDepthMm || scene.motion) return;
+    const WallCandidates& list = state.wall_cache[point];
+    if (list.gathered < 0 || list.rest) return;
+    const WallDistance other = other_wall_side(scene, list, p, c.n, reach);
+    if (other.triangle < 0 || !(other.signed_distance < reach)) return;
+    c.side = 1;
+    c.n = other.inward;
+    c.t1 = c.n.unitOrthogonal();
+    c.t2 = c.n.cross(c.t1);
+    c.gap = other.signed_distance - r;
     out.push_back(c);
   };
   for (int i = first_node; i < model.nodes; ++i) visit(i);

@@ -16,6 +16,7 @@ namespace gw {
 
 struct ContactPoint {
   int point = 0;                // contact point id: node i -> i, midpoint of element e -> nodes + e
+  int side = 0;                 // 0: the nearest wall; 1: a second side of a crease (see detect_contacts)
   int node_a = 0, node_b = -1;  // nodes carrying it (node_b = -1 for a node point)
   double wa = 1, wb = 0;        // interpolation weights
   Eigen::Vector3d n, t1, t2;    // n: into the lumen; t1, t2: tangent plane
@@ -57,9 +58,21 @@ WallDistance cached_wall_distance(const WireModel& model, const VesselScene& sce
 // coronary tree when a folded tip snapped across a 0.8 mm branch).
 bool same_wall_side(const Eigen::Vector3d& start_normal, const Eigen::Vector3d& mid_normal);
 
+// A point deeper than this into its nearest wall [mm] also gets a contact on a second side of the wall
+// where there is one within reach (detect_contacts). A held contact leaves under 0.01 mm.
+constexpr double kCreaseDepthMm = 0.02;
+
+// Where a contact point's warm-start impulse is kept in WireState::contact_impulse (2 per point: a side each).
+inline int contact_slot(int point_count, const ContactPoint& c) { return c.point + c.side * point_count; }
+
 // Contacts of the wire at the start of the step (state.x), linearised there (SOFA-style): every active
 // point whose wall clearance is below the margin plus its free-motion travel h |v_free| this sub-step
-// (length h [s]). `v_free`: per node velocity after the free motion. Clears and fills `out`; `deepest` =
+// (length h [s]). A point found more than kCreaseDepthMm inside its nearest wall (a static wall) is in a
+// crease narrower than the wire (a tip wedged where two walls meet at a dead end or a taper): it also gets
+// a contact (side 1) with the nearest wall of the other side, the nearest triangle within its reach that
+// faces away from the first by more than 60 degrees (same_wall_side), where there is one. With the nearest
+// wall's constraint alone such a point is pushed out of one wall into the other, and the nearest wall
+// swaps every sub-step: a tip chattering at ~1 m/s that halves every sub-step. `v_free`: per node velocity after the free motion. Clears and fills `out`; `deepest` =
 // largest distance of an active point outside the wall (0 if none).
 void detect_contacts(const WireModel& model, const VesselScene& scene, WireState& state,
                      const std::vector<Eigen::Vector3d>& v_free, double h, std::vector<ContactPoint>& out,

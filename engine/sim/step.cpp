@@ -126,10 +126,10 @@ std::string constrain_contacts(const WireModel& model, const VesselScene& scene,
     prepare_contact_compliance(ws.sys.a, ws.factor, k, ws.contacts, ws.cws);
     // Warm start from the previous sub-step's normal impulses of the same points.
     const int m = static_cast<int>(ws.contacts.size());
-    if (static_cast<int>(state.contact_impulse.size()) != contact_point_count(model))
-      state.contact_impulse.assign(contact_point_count(model), 0.0);
+    const int points = contact_point_count(model);
+    if (static_cast<int>(state.contact_impulse.size()) != 2 * points) state.contact_impulse.assign(2 * points, 0.0);
     if (ws.cws.impulse.size() < 3 * m) ws.cws.impulse.conservativeResize(3 * m);
-    for (int c = 0; c < m; ++c) ws.cws.impulse[3 * c] = state.contact_impulse[ws.contacts[c].point];
+    for (int c = 0; c < m; ++c) ws.cws.impulse[3 * c] = state.contact_impulse[contact_slot(points, ws.contacts[c])];
     const bool check = keep_contact_problem_if_due(model, state, ws);
     ContactSolveResult cr = solve_contact_impulses(ws.contacts, dt, mu, iters, true, ws.cws);
     if (check) check_contact_solve(model, dt, ws, rep);
@@ -139,6 +139,7 @@ std::string constrain_contacts(const WireModel& model, const VesselScene& scene,
     // a curved wall does not chatter sideways between the tangent planes at its start and end points.
     double turned = 0;
     for (ContactPoint& c : ws.contacts) {
+      if (c.side != 0) continue;  // a crease's second side keeps its normal (the query answers the nearest wall)
       Eigen::Vector3d v_end = c.v_free + c.wa * ws.cws.h_t_p.segment<3>(6 * (c.node_a - k));
       if (c.node_b >= 0) v_end += c.wb * ws.cws.h_t_p.segment<3>(6 * (c.node_b - k));
       const Eigen::Vector3d mid = contact_point_position(model, state.x, c.point) + 0.5 * dt * v_end;
@@ -164,7 +165,7 @@ std::string constrain_contacts(const WireModel& model, const VesselScene& scene,
     }
     dv += ws.cws.h_t_p.head(6 * nf);
     std::fill(state.contact_impulse.begin(), state.contact_impulse.end(), 0.0);
-    for (int c = 0; c < m; ++c) state.contact_impulse[ws.contacts[c].point] = ws.cws.impulse[3 * c];
+    for (int c = 0; c < m; ++c) state.contact_impulse[contact_slot(points, ws.contacts[c])] = ws.cws.impulse[3 * c];
     rep.contact_iterations = cr.iterations;
     rep.contact_solves = 1;
     rep.capped_contact_solves = cr.residual >= kContactSweepTolerance ? 1 : 0;  // the last solve of the two

@@ -2,8 +2,10 @@
 // penetrating, and steering in a symmetric Y by the proximal roll alone.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <vector>
 
 #include "anatomy_fixture.hpp"
+#include "mechanics_helpers.hpp"
 #include "engine/contact/detect_contacts.hpp"
 #include "engine/sim/step.hpp"
 #include "engine/wire/wire_queries.hpp"
@@ -41,7 +43,77 @@ PushResult push_through(const WireModel& m, const test::Anatomy& a, double roll,
   return r;
 }
 
+// A closed box [lo, hi] (the lumen inside, outward normals), each face a grid of squares `cell` wide with
+// its own vertices (no vertex normal blends two faces: every wall point's normal is its face's).
+TriangleMesh box_mesh(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double cell) {
+  TriangleMesh m;
+  std::vector<Eigen::Vector3d> v;
+  std::vector<Eigen::Vector3i> f;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int end = 0; end < 2; ++end) {
+      const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+      const int nu = static_cast<int>(std::ceil((hi[u] - lo[u]) / cell)), nw = static_cast<int>(std::ceil((hi[w] - lo[w]) / cell));
+      const int base = static_cast<int>(v.size());
+      for (int i = 0; i <= nu; ++i)
+        for (int j = 0; j <= nw; ++j) {
+          Eigen::Vector3d p;
+          p[axis] = end ? hi[axis] : lo[axis];
+          p[u] = lo[u] + (hi[u] - lo[u]) * i / nu;
+          p[w] = lo[w] + (hi[w] - lo[w]) * j / nw;
+          v.push_back(p);
+        }
+      for (int i = 0; i < nu; ++i)
+        for (int j = 0; j < nw; ++j) {
+          const int a = base + i * (nw + 1) + j, b = a + nw + 1, c = b + 1, d = a + 1;
+          // (u, w, axis) is right-handed: counter-clockwise in (u, w) faces +axis, outward at the high end.
+          if (end) {
+            f.emplace_back(a, b, c);
+            f.emplace_back(a, c, d);
+          } else {
+            f.emplace_back(a, c, b);
+            f.emplace_back(a, d, c);
+          }
+        }
+    }
+  m.V.resize(static_cast<int>(v.size()), 3);
+  m.F.resize(static_cast<int>(f.size()), 3);
+  for (std::size_t i = 0; i < v.size(); ++i) m.V.row(static_cast<int>(i)) = v[i].transpose();
+  for (std::size_t i = 0; i < f.size(); ++i) m.F.row(static_cast<int>(i)) = f[i].transpose();
+  return m;
+}
+
 }  // namespace
+
+TEST_CASE("a point wedged in a crease is held by both walls, a point pressed on one wall by that wall alone", "[contact]") {
+  // The box's end cap (x = 4) meets its side wall (y = 1) at a right angle. Node 10 of a straight wire along
+  // x is put 0.2 mm from the cap and `depth` into the side wall (the wire's surface beyond it).
+  const VesselScene scene = make_vessel_scene(box_mesh(Eigen::Vector3d(-20, -1, -1), Eigen::Vector3d(4, 1, 1), 0.1));
+  const WireModel m = make_wire_model(test::uniform_beam_params(20.0, 1.0), 0.01);
+  const int node = 10;
+  auto contacts_at = [&](double depth) {
+    WireState s = make_initial_state(m, Eigen::Vector3d(-16, 0, 0), Eigen::Vector3d::UnitX(), 0.0, 20.0);
+    const Eigen::Vector3d shift = Eigen::Vector3d(3.8, 1 - m.radius_mm + depth, 0.3) - s.x[node];
+    for (Eigen::Vector3d& x : s.x) x += shift;
+    std::vector<ContactPoint> out;
+    double deepest = 0;
+    detect_contacts(m, scene, s, std::vector<Eigen::Vector3d>(m.nodes, Eigen::Vector3d::Zero()), m.h, out, deepest);
+    std::vector<ContactPoint> at_node;
+    for (const ContactPoint& c : out)
+      if (c.point == node) at_node.push_back(c);
+    return at_node;
+  };
+  const std::vector<ContactPoint> pressed = contacts_at(0.5 * kCreaseDepthMm);
+  REQUIRE(pressed.size() == 1);
+  CHECK(pressed[0].n.dot(Eigen::Vector3d(0, -1, 0)) > 0.999);
+  const std::vector<ContactPoint> wedged = contacts_at(2 * kCreaseDepthMm);
+  REQUIRE(wedged.size() == 2);
+  CHECK(wedged[0].side == 0);
+  CHECK(wedged[0].n.dot(Eigen::Vector3d(0, -1, 0)) > 0.999);
+  CHECK(wedged[0].gap == Approx(-2 * kCreaseDepthMm).margin(1e-9));
+  CHECK(wedged[1].side == 1);
+  CHECK(wedged[1].n.dot(Eigen::Vector3d(-1, 0, 0)) > 0.999);
+  CHECK(wedged[1].gap == Approx(0.2 - m.radius_mm).margin(1e-9));
+}
 
 TEST_CASE("vessel scene: inside is positive, outside negative, inward normal points into the lumen", "[contact]") {
   const test::Anatomy a = test::load_anatomy("train/t1_straight_y/t1_straight_y");

@@ -137,7 +137,9 @@ TEST_CASE("reshape: the wire's own curvature over a longer tip reaches the targe
   gw::TraceOptions with;
   with.reshaped = &longer;
   auto c = gw::make_scripted_omega_controller();
-  const gw::EpisodeTrace t = gw::run_episode(task, 0, 5, 1000, *c, with);
+  // Seed 1001: seed 1000's first pass has reached the target too since a tip wedged in a crease is held by
+  // both walls (engine/contact/detect_contacts.hpp, kCreaseDepthMm); 1001-1007 still go the wrong way.
+  const gw::EpisodeTrace t = gw::run_episode(task, 0, 5, 1001, *c, with);
   REQUIRE(t.outcome != "success");
   REQUIRE(t.reshaped.size() == 1);
   CHECK(t.reshaped.front().outcome == "success");

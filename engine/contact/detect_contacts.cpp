@@ -5,9 +5,7 @@
 #include <limits>
 #include <numeric>
 
-#include "engine/scene/closest_point_triangle.hpp"
 #include "engine/scene/moving_wall.hpp"
-#include "engine/scene/nearest_face.hpp"
 #include "engine/scene/wall_distance_by_grid.hpp"
 
 namespace gw {
@@ -204,35 +202,37 @@ WallDistance cached_wall_distance(const WireModel& model, const VesselScene& sce
 
 namespace {
 
-// The nearest wall of another side than `inward` (the inward normal of the nearest wall) for the point
-// `point` at p, within `reach`, among its static candidate list: triangles whose inward face normal turns
-// from `inward` by more than 60 degrees, then (to_wall_distance's smooth normal) checked again. triangle
+// The nearest wall of another side than `inward` (the inward normal of the nearest wall) for contact point
+// `point` at p, within `reach`, wall time t: among the triangles within reach (the point's static list, or a
+// moving wall's current shape gathered afresh), those whose inward face normal turns from `inward` by more
+// than 60 degrees, scanned for the nearest as every query is; its smooth normal is checked again. triangle
 // -1: none.
-WallDistance other_wall_side(const VesselScene& scene, const WallCandidates& c, const Eigen::Vector3d& p,
-                             const Eigen::Vector3d& inward, double reach) {
-  NearestFace best(reach);
+WallDistance other_wall_side(const VesselScene& scene, const WireState& state, int point, const Eigen::Vector3d& p,
+                             const Eigen::Vector3d& inward, double reach, double t) {
+  thread_local std::vector<int> near, other;
+  other.clear();
+  if (scene.motion) {
+    triangles_near_at(scene, t, p, reach, near);
+    for (const int f : near) {
+      const auto& F = scene.mesh.F;
+      const Eigen::Vector3d a = current_wall_vertex(scene, F(f, 0), t), b = current_wall_vertex(scene, F(f, 1), t),
+                            c = current_wall_vertex(scene, F(f, 2), t);
+      const Eigen::Vector3d n = (b - a).cross(c - a);  // outward (counter-clockwise seen from outside)
+      if (!same_wall_side(inward, -n.normalized())) other.push_back(f);
+    }
+    WallDistance wd = wall_distance_among_at(scene, t, p, other, reach);
+    if (wd.triangle >= 0 && same_wall_side(inward, wd.inward)) wd.triangle = -1;
+    return wd;
+  }
+  const WallCandidates& c = state.wall_cache[point];
   const double moved = (p - c.centre).norm();
   for (std::size_t i = 0; i < c.triangles.size(); ++i) {
     if (c.lower_bounds[i] - moved > reach) break;  // sorted
     const int f = c.triangles[i];
-    const Eigen::Vector3d n = scene.face_normals.row(f).transpose();
-    if (same_wall_side(inward, -n)) continue;
-    const Eigen::Vector4d& sphere = scene.face_spheres[f];
-    if ((p - sphere.head<3>()).norm() - sphere[3] > reach) continue;
-    const Eigen::Matrix3d& tri = scene.face_corners[f];
-    int region = 0;
-    const Eigen::Vector3d q = closest_point_on_triangle(p, tri.col(0), tri.col(1), tri.col(2), region);
-    best.offer(f, static_cast<int>(i), q, p - q, (p - q).squaredNorm(), n);
+    if (!same_wall_side(inward, -scene.face_normals.row(f).transpose())) other.push_back(f);
   }
-  WallDistance wd;
-  wd.triangle = -1;
-  if (best.triangle < 0) return wd;
-  const auto& V = scene.mesh.V;
-  const auto& F = scene.mesh.F;
-  const int f = best.triangle;
-  wd = to_wall_distance(best, V.row(F(f, 0)).transpose(), V.row(F(f, 1)).transpose(), V.row(F(f, 2)).transpose(),
-                        [&](int k) -> Eigen::Vector3d { return scene.vertex_normals.row(F(f, k)).transpose(); });
-  if (same_wall_side(inward, wd.inward)) wd.triangle = -1;
+  WallDistance wd = wall_distance_among(scene, p, other, reach);
+  if (wd.triangle >= 0 && same_wall_side(inward, wd.inward)) wd.triangle = -1;
   return wd;
 }
 
@@ -283,11 +283,10 @@ void detect_contacts(const WireModel& model, const VesselScene& scene, WireState
     c.gap = wd.signed_distance - r;
     c.v_free = v;
     out.push_back(c);
-    if (c.gap >= -kCreaseDepthMm || scene.motion) return;
-    const WallCandidates& list = state.wall_cache[point];
-    if (list.gathered < 0 || list.rest) return;
-    const WallDistance other = other_wall_side(scene, list, p, c.n, reach);
+    if (c.gap >= -kCreaseDepthMm) return;
+    const WallDistance other = other_wall_side(scene, state, point, p, c.n, reach, state.time);
     if (other.triangle < 0 || !(other.signed_distance < reach)) return;
+    if (scene.motion) c.v_wall = wall_point_velocity(scene, other.triangle, other.closest, state.time, dt);
     c.side = 1;
     c.n = other.inward;
     c.t1 = c.n.unitOrthogonal();

@@ -67,13 +67,14 @@ inline int contact_slot(int point_count, const ContactPoint& c) { return c.point
 
 // Contacts of the wire at the start of the step (state.x), linearised there (SOFA-style): every active
 // point whose wall clearance is below the margin plus its free-motion travel h |v_free| this sub-step
-// (length h [s]). A point found more than kCreaseDepthMm inside its nearest wall (a static wall) is in a
+// (length h [s]). A point found more than kCreaseDepthMm inside its nearest wall (static or moving) is in a
 // crease narrower than the wire (a tip wedged where two walls meet at a dead end or a taper): it also gets
 // a contact (side 1) with the nearest wall of the other side, the nearest triangle within its reach that
 // faces away from the first by more than 60 degrees (same_wall_side), where there is one. With the nearest
 // wall's constraint alone such a point is pushed out of one wall into the other, and the nearest wall
-// swaps every sub-step: a tip chattering at ~1 m/s that halves every sub-step. `v_free`: per node velocity after the free motion. Clears and fills `out`; `deepest` =
-// largest distance of an active point outside the wall (0 if none).
+// swaps every sub-step: a tip chattering at ~1 m/s that halves every sub-step. `v_free`: per node velocity
+// after the free motion. Clears and fills `out`; `deepest` = largest distance of an active point outside the
+// wall (0 if none).
 void detect_contacts(const WireModel& model, const VesselScene& scene, WireState& state,
                      const std::vector<Eigen::Vector3d>& v_free, double h, std::vector<ContactPoint>& out,
                      double& deepest);

@@ -7,6 +7,7 @@
 #include "anatomy_fixture.hpp"
 #include "mechanics_helpers.hpp"
 #include "engine/contact/detect_contacts.hpp"
+#include "engine/scene/moving_wall.hpp"
 #include "engine/sim/step.hpp"
 #include "engine/wire/wire_queries.hpp"
 
@@ -86,11 +87,15 @@ TriangleMesh box_mesh(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, doub
 
 TEST_CASE("a point wedged in a crease is held by both walls, a point pressed on one wall by that wall alone", "[contact]") {
   // The box's end cap (x = 4) meets its side wall (y = 1) at a right angle. Node 10 of a straight wire along
-  // x is put 0.2 mm from the cap and `depth` into the side wall (the wire's surface beyond it).
-  const VesselScene scene = make_vessel_scene(box_mesh(Eigen::Vector3d(-20, -1, -1), Eigen::Vector3d(4, 1, 1), 0.1));
+  // x is put 0.2 mm from the cap and `depth` into the side wall (the wire's surface beyond it). The same box
+  // moving (a rigid drift along x, at rest at t = 0) gives the same contacts with the wall's velocity.
+  const TriangleMesh box = box_mesh(Eigen::Vector3d(-20, -1, -1), Eigen::Vector3d(4, 1, 1), 0.1);
+  const VesselScene still = make_vessel_scene(box);
+  const VesselScene moving =
+      attach_wall_motion(still, rigid_wall_motion(box, Eigen::Vector3d(2, 0, 0), Eigen::Vector3d::Zero(), 60));
   const WireModel m = make_wire_model(test::uniform_beam_params(20.0, 1.0), 0.01);
   const int node = 10;
-  auto contacts_at = [&](double depth) {
+  auto contacts_at = [&](const VesselScene& scene, double depth) {
     WireState s = make_initial_state(m, Eigen::Vector3d(-16, 0, 0), Eigen::Vector3d::UnitX(), 0.0, 20.0);
     const Eigen::Vector3d shift = Eigen::Vector3d(3.8, 1 - m.radius_mm + depth, 0.3) - s.x[node];
     for (Eigen::Vector3d& x : s.x) x += shift;
@@ -102,17 +107,22 @@ TEST_CASE("a point wedged in a crease is held by both walls, a point pressed on 
       if (c.point == node) at_node.push_back(c);
     return at_node;
   };
-  const std::vector<ContactPoint> pressed = contacts_at(0.5 * kCreaseDepthMm);
-  REQUIRE(pressed.size() == 1);
-  CHECK(pressed[0].n.dot(Eigen::Vector3d(0, -1, 0)) > 0.999);
-  const std::vector<ContactPoint> wedged = contacts_at(2 * kCreaseDepthMm);
-  REQUIRE(wedged.size() == 2);
-  CHECK(wedged[0].side == 0);
-  CHECK(wedged[0].n.dot(Eigen::Vector3d(0, -1, 0)) > 0.999);
-  CHECK(wedged[0].gap == Approx(-2 * kCreaseDepthMm).margin(1e-9));
-  CHECK(wedged[1].side == 1);
-  CHECK(wedged[1].n.dot(Eigen::Vector3d(-1, 0, 0)) > 0.999);
-  CHECK(wedged[1].gap == Approx(0.2 - m.radius_mm).margin(1e-9));
+  for (const VesselScene* scene : {&still, &moving}) {
+    INFO((scene == &still ? "static wall" : "moving wall"));
+    const std::vector<ContactPoint> pressed = contacts_at(*scene, 0.5 * kCreaseDepthMm);
+    REQUIRE(pressed.size() == 1);
+    CHECK(pressed[0].n.dot(Eigen::Vector3d(0, -1, 0)) > 0.999);
+    const std::vector<ContactPoint> wedged = contacts_at(*scene, 2 * kCreaseDepthMm);
+    REQUIRE(wedged.size() == 2);
+    CHECK(wedged[0].side == 0);
+    CHECK(wedged[0].n.dot(Eigen::Vector3d(0, -1, 0)) > 0.999);
+    CHECK(wedged[0].gap == Approx(-2 * kCreaseDepthMm).margin(1e-9));
+    CHECK(wedged[1].side == 1);
+    CHECK(wedged[1].n.dot(Eigen::Vector3d(-1, 0, 0)) > 0.999);
+    CHECK(wedged[1].gap == Approx(0.2 - m.radius_mm).margin(1e-9));
+    const Eigen::Vector3d drift = scene == &moving ? Eigen::Vector3d(2, 0, 0) : Eigen::Vector3d::Zero();
+    CHECK((wedged[1].v_wall - drift).norm() < 1e-9);
+  }
 }
 
 TEST_CASE("vessel scene: inside is positive, outside negative, inward normal points into the lumen", "[contact]") {

@@ -94,6 +94,38 @@ bool free_motion(const WireModel& model, const WireState& state, double push, do
   rep.contact_checks.push_back(e);
 }
 
+// Each contact (ws.contacts, after the first solve: ws.cws.h_t_p) re-linearised at the middle of its constrained
+// motion: the wall normal there makes g(x1) ~ g(x0) + n_mid . (x1 - x0) second-order accurate, so a wire pressed
+// on a curved wall does not chatter sideways between the tangent planes at its start and end points. Returns the
+// largest 1 - cos of a normal's turn (0: none turned; above 1e-5 the caller solves again).
+double relinearise_at_mid_motion(const WireModel& model, const VesselScene& scene, WireState& state, double dt,
+                                 StepWorkspace& ws) {
+  const int k = ws.sys.first_free;
+  double turned = 0;
+  for (ContactPoint& c : ws.contacts) {
+    if (c.side != 0) continue;  // a crease's second side keeps its normal (the query answers the nearest wall)
+    Eigen::Vector3d v_end = c.v_free + c.wa * ws.cws.h_t_p.segment<3>(6 * (c.node_a - k));
+    if (c.node_b >= 0) v_end += c.wb * ws.cws.h_t_p.segment<3>(6 * (c.node_b - k));
+    const Eigen::Vector3d mid = contact_point_position(model, state.x, c.point) + 0.5 * dt * v_end;
+    const double need = model.radius_mm + model.params.contact_margin_mm + dt * v_end.norm();
+    // Exact to the cutoff: a wall a little beyond `need` at mid-motion still gives this contact its normal.
+    // A moving wall is taken at mid-motion too, seen from its shape at the start of the step: the point
+    // is carried back by the wall's mean velocity over the sub-step (half of its travel), which is the
+    // same query for a translating wall and differs by second-order terms otherwise (the wall's
+    // acceleration, h^2 a / 8, and its strain rate times h / 2: of order 1e-4 rad for the coronary field
+    // at 100 bpm, against the 4e-3 rad that trigger a second solve). It saves evaluating the triangles,
+    // normals and vertex normals at a third time per sub-step (t + h / 2, on top of t and t + h).
+    const Eigen::Vector3d seen = scene.motion ? Eigen::Vector3d(mid - 0.5 * dt * c.v_wall) : mid;
+    const WallDistance wd = cached_wall_distance(model, scene, state, c.point, seen, need, true, state.time);
+    if (wd.triangle < 0 || !same_wall_side(c.n, wd.inward)) continue;
+    turned = std::max(turned, 1.0 - wd.inward.dot(c.n));
+    c.n = wd.inward;
+    c.t1 = c.n.unitOrthogonal();
+    c.t2 = c.n.cross(c.t1);
+  }
+  return turned;
+}
+
 // Stage: contacts at the start of the step, linearised there (Eq. 2), with the free-motion velocities;
 // their impulses (warm-started from the previous sub-step's), a second solve where a contact's normal at
 // mid-motion turned, the velocity change added to ws.dv and the contact forces into the state. Returns
@@ -134,31 +166,7 @@ std::string constrain_contacts(const WireModel& model, const VesselScene& scene,
     ContactSolveResult cr = solve_contact_impulses(ws.contacts, dt, mu, iters, true, ws.cws);
     if (check) check_contact_solve(model, dt, ws, rep);
     contact_velocity_change(ws.sys.a, ws.factor, ws.contacts, ws.cws);
-    // Second pass with each contact re-linearised at the middle of its constrained motion: the wall
-    // normal there makes g(x1) ~ g(x0) + n_mid . (x1 - x0) second-order accurate, so a wire pressed on
-    // a curved wall does not chatter sideways between the tangent planes at its start and end points.
-    double turned = 0;
-    for (ContactPoint& c : ws.contacts) {
-      if (c.side != 0) continue;  // a crease's second side keeps its normal (the query answers the nearest wall)
-      Eigen::Vector3d v_end = c.v_free + c.wa * ws.cws.h_t_p.segment<3>(6 * (c.node_a - k));
-      if (c.node_b >= 0) v_end += c.wb * ws.cws.h_t_p.segment<3>(6 * (c.node_b - k));
-      const Eigen::Vector3d mid = contact_point_position(model, state.x, c.point) + 0.5 * dt * v_end;
-      const double need = model.radius_mm + model.params.contact_margin_mm + dt * v_end.norm();
-      // Exact to the cutoff: a wall a little beyond `need` at mid-motion still gives this contact its normal.
-      // A moving wall is taken at mid-motion too, seen from its shape at the start of the step: the point
-      // is carried back by the wall's mean velocity over the sub-step (half of its travel), which is the
-      // same query for a translating wall and differs by second-order terms otherwise (the wall's
-      // acceleration, h^2 a / 8, and its strain rate times h / 2: of order 1e-4 rad for the coronary field
-      // at 100 bpm, against the 4e-3 rad that trigger a second solve). It saves evaluating the triangles,
-      // normals and vertex normals at a third time per sub-step (t + h / 2, on top of t and t + h).
-      const Eigen::Vector3d seen = scene.motion ? Eigen::Vector3d(mid - 0.5 * dt * c.v_wall) : mid;
-      const WallDistance wd = cached_wall_distance(model, scene, state, c.point, seen, need, true, state.time);
-      if (wd.triangle < 0 || !same_wall_side(c.n, wd.inward)) continue;
-      turned = std::max(turned, 1.0 - wd.inward.dot(c.n));
-      c.n = wd.inward;
-      c.t1 = c.n.unitOrthogonal();
-      c.t2 = c.n.cross(c.t1);
-    }
+    const double turned = relinearise_at_mid_motion(model, scene, state, dt, ws);
     if (turned > 1e-5) {  // a normal turned by more than ~0.25 degrees: solve again with the new ones
       cr = solve_contact_impulses(ws.contacts, dt, mu, iters, true, ws.cws);
       contact_velocity_change(ws.sys.a, ws.factor, ws.contacts, ws.cws);

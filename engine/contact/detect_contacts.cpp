@@ -26,6 +26,7 @@ bool contact_point_active(const WireModel& model, const WireState& state, int po
 }
 
 namespace {
+
 const double kMidpointMinLength = 1.0;  // mm
 
 // Re-gathers the candidates of one point around `p` within `radius`, sorted by distance lower bound.
@@ -211,28 +212,28 @@ WallDistance other_wall_side(const VesselScene& scene, const WireState& state, i
                              const Eigen::Vector3d& inward, double reach, double t) {
   thread_local std::vector<int> near, other;
   other.clear();
+  WallDistance wd;
   if (scene.motion) {
+    const auto& F = scene.mesh.F;
     triangles_near_at(scene, t, p, reach, near);
     for (const int f : near) {
-      const auto& F = scene.mesh.F;
       const Eigen::Vector3d a = current_wall_vertex(scene, F(f, 0), t), b = current_wall_vertex(scene, F(f, 1), t),
                             c = current_wall_vertex(scene, F(f, 2), t);
       const Eigen::Vector3d n = (b - a).cross(c - a);  // outward (counter-clockwise seen from outside)
       if (!same_wall_side(inward, -n.normalized())) other.push_back(f);
     }
-    WallDistance wd = wall_distance_among_at(scene, t, p, other, reach);
-    if (wd.triangle >= 0 && same_wall_side(inward, wd.inward)) wd.triangle = -1;
-    return wd;
+    wd = wall_distance_among_at(scene, t, p, other, reach);
+  } else {
+    const WallCandidates& c = state.wall_cache[point];
+    const double moved = (p - c.centre).norm();
+    for (std::size_t i = 0; i < c.triangles.size(); ++i) {
+      if (c.lower_bounds[i] - moved > reach) break;  // sorted
+      const int f = c.triangles[i];
+      if (!same_wall_side(inward, -scene.face_normals.row(f).transpose())) other.push_back(f);
+    }
+    wd = wall_distance_among(scene, p, other, reach);
   }
-  const WallCandidates& c = state.wall_cache[point];
-  const double moved = (p - c.centre).norm();
-  for (std::size_t i = 0; i < c.triangles.size(); ++i) {
-    if (c.lower_bounds[i] - moved > reach) break;  // sorted
-    const int f = c.triangles[i];
-    if (!same_wall_side(inward, -scene.face_normals.row(f).transpose())) other.push_back(f);
-  }
-  WallDistance wd = wall_distance_among(scene, p, other, reach);
-  if (wd.triangle >= 0 && same_wall_side(inward, wd.inward)) wd.triangle = -1;
+  if (wd.triangle >= 0 && same_wall_side(inward, wd.inward)) wd.triangle = -1;  // its smooth normal
   return wd;
 }
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # A contact point wedged in a crease held by both walls (engine/contact/detect_contacts.hpp kCreaseDepthMm;
-# docs/physics.md "A tip wedged in a crease"): the bench insertions that never go 0.02 mm into a wall are
+# docs/physics.md "A tip wedged in a crease"), measured at its first depth, 0.02 mm (3fff197; 0.01 mm since
+# crease_depth.sh, which measures that step): the bench insertions that never go that deep into a wall are
 # bit-identical (their hashes), the jam's halvings and time per sub-step are compared with the build before, and
 # the table's outcomes with the build before (runs/equivalence/pivot_inverse, made by pivot_inverse.sh at its
 # commit, where present) and the published table. The steps are engine_change.sh's. Run from the repository root

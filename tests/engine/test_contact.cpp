@@ -53,7 +53,8 @@ TriangleMesh box_mesh(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, doub
   for (int axis = 0; axis < 3; ++axis)
     for (int end = 0; end < 2; ++end) {
       const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-      const int nu = static_cast<int>(std::ceil((hi[u] - lo[u]) / cell)), nw = static_cast<int>(std::ceil((hi[w] - lo[w]) / cell));
+      const int nu = static_cast<int>(std::ceil((hi[u] - lo[u]) / cell));
+      const int nw = static_cast<int>(std::ceil((hi[w] - lo[w]) / cell));
       const int base = static_cast<int>(v.size());
       for (int i = 0; i <= nu; ++i)
         for (int j = 0; j <= nw; ++j) {

@@ -14,7 +14,7 @@ import csv
 import json
 from pathlib import Path
 
-RUNS = ("shipped", "fed")
+RUNS = ("shipped", "fed", "overlapped")
 
 
 def monitor_clock(run: Path) -> list[tuple[int, float]]:
@@ -84,7 +84,7 @@ def main() -> int:
     p.add_argument("--out", type=Path, default=Path(__file__).resolve().parent, help="scores in, summary out")
     a = p.parse_args()
     runs = {name: run_points(a.runs / name, json.loads((a.out / f"scores_{name}.json").read_text()))
-            for name in RUNS}
+            for name in RUNS if (a.out / f"scores_{name}.json").exists()}  # the runs run.sh ran and scored
     bench = json.loads((a.out / "bench.json").read_text()) if (a.out / "bench.json").exists() else None
     (a.out / "summary.json").write_text(json.dumps({"bench": bench, "runs": runs}, indent=1) + "\n")
     plot(runs, a.out / "curves.png")

@@ -19,9 +19,14 @@ def test_schedule_arithmetic():
     assert (c["train_freq"], c["gradient_steps"], c["batch_size"], c["net_arch"], c["torch_threads"]) == \
         (8, 1, 128, [64, 64], 1)
     assert gradient_steps_per_env_step(c, 1) == 0.125
+    assert not c["overlap"] and c["envs"] is None
+    o = parse_config("overlapped")  # fed's ratio with 4 servers and gw-train --overlap
+    assert o["overlap"] and o["envs"] == 4 and gradient_steps_per_env_step(o, o["envs"]) == 0.25
+    assert parse_config("y=2:1:64:64:0:e3")["envs"] == 3
 
 
-@pytest.mark.parametrize("bad", ["nope", "x=1:2:3", "x=a:b:c:d:e"])
+@pytest.mark.parametrize("bad", ["nope", "x=1:2:3", "x=a:b:c:d:e", "x=1:1:8:8:0:fast", "x=1:1:8:8:0:e0",
+                                 "x=1:1:8:8:0:e2:e3"])
 def test_a_malformed_config_is_named(bad):
     with pytest.raises(SystemExit) as e:
         parse_config(bad)

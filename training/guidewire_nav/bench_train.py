@@ -15,11 +15,16 @@ Prints ONE JSON object (and writes it to --out). Measured in this run, on this m
 A config is NAME=train_freq:gradient_steps:batch:net:threads (net as 256x256x256); the named ones:
   shipped  1:-1:256:256x256x256:0   the shipped training command: one gradient step per env step
   fed      4:2:256:256x256:0        2 gradient steps every 4 vector steps of 2 envs (1 per 4 env steps), 2x256 nets
+  overlapped 2:2:256:256x256:0:overlap:e4   fed's ratio (1 gradient step per 4 env steps) with 4 servers and
+                                           gw-train --overlap: the gradient steps while the servers simulate
+A config may end in `:overlap` (gw-train --overlap) and `:eN` (N servers instead of --envs); each number of servers
+gets its own vec_env measurement, the reference of the configs that use it.
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import platform
 import sys
@@ -28,12 +33,13 @@ from pathlib import Path
 
 import numpy as np
 import torch
+from stable_baselines3 import SAC
 from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv
 
 from guidewire_nav.train import SACWithActorRate, Settings, git_commit, make_env_fn
 
 DEFAULT_THREADS = torch.get_num_threads()  # torch's own default (one per core), before any config sets another
-NAMED = {"shipped": "1:-1:256:256x256x256:0", "fed": "4:2:256:256x256:0"}
+NAMED = {"shipped": "1:-1:256:256x256x256:0", "fed": "4:2:256:256x256:0", "overlapped": "2:2:256:256x256:0:overlap:e4"}
 
 
 def parse_config(text: str) -> dict:
@@ -41,12 +47,16 @@ def parse_config(text: str) -> dict:
     name, _, spec = text.partition("=")
     spec = spec or NAMED.get(name, "")
     try:
-        freq, grad, batch, net, threads = spec.split(":")
+        freq, grad, batch, net, threads, *extra = spec.split(":")
+        envs = [int(e[1:]) for e in extra if e.startswith("e")]
+        if [e for e in extra if e != "overlap" and not e.startswith("e")] or len(envs) > 1 or min(envs, default=1) < 1:
+            raise ValueError(extra)
         return {"name": name, "train_freq": int(freq), "gradient_steps": int(grad), "batch_size": int(batch),
-                "net_arch": [int(n) for n in net.split("x")], "torch_threads": int(threads)}
+                "net_arch": [int(n) for n in net.split("x")], "torch_threads": int(threads),
+                "overlap": "overlap" in extra, "envs": envs[0] if envs else None}
     except ValueError:
         sys.exit(f"gw-bench-train: --configs entry '{text}' is neither {sorted(NAMED)} nor "
-                 "NAME=train_freq:gradient_steps:batch:net:threads (e.g. fast=4:2:512:256x256x256:1)")
+                 "NAME=train_freq:gradient_steps:batch:net:threads[:overlap][:eN] (e.g. fast=4:2:512:256x256x256:1)")
 
 
 def time_calls(fn, calls: int) -> float:
@@ -93,7 +103,7 @@ def make_model(vec_env, config: dict, seed: int = 0) -> SACWithActorRate:
     return SACWithActorRate("MlpPolicy", vec_env, learning_rate=paper.learning_rate, buffer_size=paper.buffer_size,
                             batch_size=config["batch_size"], gamma=paper.gamma, learning_starts=0, train_freq=config["train_freq"],
                             gradient_steps=config["gradient_steps"], seed=seed, device="cpu", verbose=0,
-                            policy_kwargs={"net_arch": config["net_arch"]})
+                            policy_kwargs={"net_arch": config["net_arch"]}, overlap=config["overlap"])
 
 
 def warm_buffer(model, transitions: int) -> None:
@@ -113,9 +123,10 @@ def bench_replay(model, calls: int) -> dict:
 
 
 def bench_gradient(model, steps: int) -> float:
-    """ms per gradient step at the model's batch size."""
-    model.train(gradient_steps=2, batch_size=model.batch_size)  # warm-up
-    return time_calls(lambda: model.train(gradient_steps=1, batch_size=model.batch_size), steps)
+    """ms per gradient step at the model's batch size (SB3's update itself: an overlapped model's train only owes)."""
+    update = lambda n: SAC.train(model, gradient_steps=n, batch_size=model.batch_size)  # noqa: E731
+    update(2)  # warm-up
+    return time_calls(lambda: update(1), steps)
 
 
 def gradient_steps_per_env_step(config: dict, envs: int) -> float:
@@ -167,10 +178,19 @@ def main(argv=None) -> int:
     report = {"commit": git_commit(), "machine": platform.machine(), "cores": torch.get_num_threads(),
               "torch": torch.__version__, "envs": a.envs, "steps": a.steps,
               "simulation": bench_simulation(settings, a.steps)}
-    vec_env = make_vec_env(settings)
-    report["vec_env"] = bench_vec_env(vec_env, a.steps)
-    report["configs"] = [bench_config(vec_env, c, a.steps, report["vec_env"]) for c in configs]
-    vec_env.close()
+    vec_envs = {a.envs: make_vec_env(settings)}  # one set of servers per number of servers the configs use
+    report["vec_env"] = bench_vec_env(vec_envs[a.envs], a.steps)
+    references = {a.envs: report["vec_env"]}
+    report["configs"] = []
+    for c in configs:
+        envs = c["envs"] or a.envs
+        if envs not in vec_envs:
+            vec_envs[envs] = make_vec_env(dataclasses.replace(settings, envs=envs))
+            references[envs] = bench_vec_env(vec_envs[envs], a.steps)
+        report["configs"].append({**bench_config(vec_envs[envs], c, a.steps, references[envs]), "envs": envs,
+                                  "vec_env": references[envs]})
+    for vec_env in vec_envs.values():
+        vec_env.close()
     text = json.dumps(report, indent=2)
     if a.out:
         Path(a.out).parent.mkdir(parents=True, exist_ok=True)

@@ -33,7 +33,7 @@ import torch
 from stable_baselines3 import SAC
 from stable_baselines3.common.callbacks import BaseCallback, CallbackList, CheckpointCallback
 from stable_baselines3.common.logger import configure
-from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv, VecMonitor
+from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv, VecEnvWrapper, VecMonitor
 
 
 def arg(default, help: str):
@@ -77,6 +77,9 @@ class Settings:
     train_freq: int = arg(1, "environment steps (per worker) between updates")
     gradient_steps: int = arg(-1, "gradient steps per update; -1: one per environment step over all workers "
                                   "(paper)")
+    overlap: bool = arg(False, "take the gradient steps while the servers simulate the next env step, not between "
+                               "env steps (OverlappedUpdates: the actions of one vector step in each --train-freq "
+                               "come from the actor before that update; same seed, same run)")
     net_arch: str = arg("256,256,256", "hidden layers of the actor and the critics (SB3's default is only 2x256)")
     ent_coef: str = arg("auto", "entropy coefficient: 'auto' (learned, paper) or a number")
     device: str = arg("auto", "torch device: auto, cuda or cpu")
@@ -285,30 +288,105 @@ class SACWithActorRate(SAC):
     ``SACWithActorRate.load(path, actor_learning_rate=r, ...)`` sets it too (SB3 load sets keyword
     arguments as attributes)."""
 
-    def __init__(self, *args, actor_learning_rate: float = 0.0, **kwargs):
+    def __init__(self, *args, actor_learning_rate: float = 0.0, overlap: bool = False, **kwargs):
         self.actor_learning_rate = actor_learning_rate
+        self.overlap = overlap
+        self._owed = None  # OverlappedUpdates: the gradient steps of the last update, taken during the next rollout
+        self._overlapped_env = None  # its wrapper of the training env
         super().__init__(*args, **kwargs)
 
     def _excluded_save_params(self) -> list[str]:
-        return [*super()._excluded_save_params(), "actor_learning_rate"]  # the zips stay plain SAC's
+        return [*super()._excluded_save_params(), "actor_learning_rate", "overlap", "_owed",
+                "_overlapped_env"]  # plain SAC's zips
 
-    def collect_rollouts(self, *args, **kwargs):
+    def collect_rollouts(self, env, *args, **kwargs):
         """SB3's collection with torch on one thread: the actor's forward pass on a few observations gains
         nothing from more, and a second OpenMP thread spinning after it takes a core from the servers
         (gw-bench-train, 2 cores, 2 servers: 125 -> 170 env steps/s of collection). Gradient steps keep
-        every thread."""
+        every thread; with --overlap they run within the collection, on its one thread, beside the servers."""
         threads = torch.get_num_threads()
         torch.set_num_threads(1)
         try:
-            return super().collect_rollouts(*args, **kwargs)
+            if self.overlap:
+                env = OverlappedUpdates.around(env, self)
+            return super().collect_rollouts(env, *args, **kwargs)
         finally:
             torch.set_num_threads(threads)
+
+    def train(self, gradient_steps: int, batch_size: int = 64) -> None:
+        """SB3's update; with --overlap only owed here (OverlappedUpdates takes it during the next rollout)."""
+        if self.overlap:
+            self._owed = OverlappedUpdates.owe(self._owed, gradient_steps, batch_size)
+            return
+        super().train(gradient_steps, batch_size)
+
+    def take_owed_updates(self, window: int, windows: int) -> None:
+        """The owed gradient steps due in vector step `window` of `windows` (spread evenly over the rollout),
+        then the policy back in collection mode."""
+        if not self._owed:
+            return
+        total, batch = self._owed["steps"], self._owed["batch"]
+        due = total * (window + 1) // windows - total * window // windows
+        if due > 0:
+            super().train(due, batch)
+            self.policy.set_training_mode(False)
+        if window + 1 >= windows:
+            self._owed = None
+
+    def learn(self, *args, **kwargs):
+        """SB3's learn; with --overlap the last update's owed steps are taken before it returns (a saved model
+        has every update of its steps)."""
+        model = super().learn(*args, **kwargs)
+        if self._owed:
+            super().train(self._owed["steps"], self._owed["batch"])
+            self._owed = None
+        return model
 
     def _update_learning_rate(self, optimizers) -> None:
         super()._update_learning_rate(optimizers)
         if getattr(self, "actor_learning_rate", 0.0) > 0:
             for group in self.actor.optimizer.param_groups:
                 group["lr"] = self.actor_learning_rate
+
+
+class OverlappedUpdates(VecEnvWrapper):
+    """The learner keeps up with the servers (issue 62 item 4): SB3 steps the servers, then takes its gradient
+    steps while they wait. Here an update's gradient steps are owed instead, and taken during the next rollout's
+    vector steps, between sending the actions (step_async: the servers simulate) and reading the results
+    (step_wait), spread evenly over the rollout's --train-freq vector steps. The order of everything is fixed, so
+    the same seed gives the same run; what changes against SB3's loop is that the actions of a rollout's vector
+    steps come from the actor before the update that is taken during them (at most --train-freq vector steps
+    older). With one worker (DummyVecEnv) the server steps in step_wait: no overlap, the same order."""
+
+    def __init__(self, venv, model: "SACWithActorRate"):
+        super().__init__(venv)
+        self.model = model
+        self.window, self.windows = 0, 1
+
+    @staticmethod
+    def around(env, model) -> "OverlappedUpdates":
+        """The wrapper of `env` for this rollout (made once per env, kept on the model)."""
+        wrapper = model._overlapped_env
+        if wrapper is None or wrapper.venv is not env:
+            wrapper = model._overlapped_env = OverlappedUpdates(env, model)
+        wrapper.window, wrapper.windows = 0, max(1, model.train_freq.frequency)
+        return wrapper
+
+    @staticmethod
+    def owe(owed, gradient_steps: int, batch_size: int) -> dict:
+        """An update's steps added to what is still owed (a rollout cut short leaves some)."""
+        return {"steps": gradient_steps + (owed["steps"] if owed else 0), "batch": batch_size}
+
+    def step_async(self, actions) -> None:
+        self.venv.step_async(actions)
+        self.model.take_owed_updates(self.window, self.windows)
+        self.window += 1
+
+    def step_wait(self):
+        return self.venv.step_wait()
+
+    def reset(self):
+        return self.venv.reset()
 
 
 class ActorUpdates(BaseCallback):
@@ -548,7 +626,7 @@ def make_model(s: Settings, out: Path, vec_env, eval_env, resume_from):
     sac_settings = dict(
         learning_rate=s.learning_rate, buffer_size=s.buffer_size, batch_size=s.batch_size, gamma=s.gamma,
         learning_starts=s.learning_starts, train_freq=s.train_freq, gradient_steps=s.gradient_steps,
-        seed=s.seed, device=s.device, verbose=0, actor_learning_rate=s.actor_learning_rate,
+        seed=s.seed, device=s.device, verbose=0, actor_learning_rate=s.actor_learning_rate, overlap=s.overlap,
     )
     if resume_from:  # the run's own state: networks, optimisers, entropy coefficient, step counter, buffer
         model = SACWithActorRate.load(resume_from[1], env=vec_env, **sac_settings)

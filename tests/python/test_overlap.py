@@ -82,7 +82,7 @@ def test_updates_are_taken_while_the_servers_step_and_as_many_as_sb3_takes(updat
     model, _ = run(True, events)
     assert sum(updates) == plain_steps > 0 and model._n_updates == plain._n_updates
     assert all(n == 1 for n in updates[:-1])  # 2 owed steps spread over the rollout's 4 vector steps
-    assert model._owed is None
+    assert model._owed_steps == 0
 
 
 def test_each_update_falls_between_a_send_and_its_read(monkeypatch):
@@ -115,4 +115,28 @@ def test_same_seed_same_run_and_it_saves_as_plain_sac(tmp_path):
     loaded = SAC.load(tmp_path / "m.zip", device="cpu")
     assert not hasattr(loaded, "overlap") and not hasattr(loaded, "_overlapped_env")
     again = SACWithActorRate.load(tmp_path / "m.zip", device="cpu", overlap=True)
-    assert again.overlap and again._owed is None
+    assert again.overlap and again._owed_steps == 0
+
+
+def test_a_run_stopped_within_a_rollout_takes_the_updates_sb3_takes(updates):
+    """A callback that stops the run part way through a rollout (--max-minutes): the steps still owed are taken,
+    each once, and the run has SB3's count (SB3 skips the cut rollout's update)."""
+    from stable_baselines3.common.callbacks import BaseCallback
+
+    class StopAt(BaseCallback):
+        def _on_step(self):
+            return self.num_timesteps < 91  # vector steps of 2 envs: stops in the middle of a 4-step rollout
+
+    torch.set_num_threads(1)
+    counts = []
+    for overlap in (False, True):
+        env = Recording([])
+        env.seed(3)
+        model = SACWithActorRate("MlpPolicy", env, learning_starts=40, train_freq=4, gradient_steps=2, batch_size=16,
+                                 buffer_size=1000, seed=3, device="cpu", policy_kwargs={"net_arch": [16, 16]},
+                                 overlap=overlap)
+        model.set_logger(configure(None, []))
+        model.learn(total_timesteps=200, callback=StopAt())
+        counts.append((model._n_updates, sum(updates), model._owed_steps))
+        updates.clear()
+    assert counts[0][:2] == counts[1][:2] and counts[0][0] > 0 and counts[1][2] == 0, counts

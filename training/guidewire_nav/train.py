@@ -291,13 +291,13 @@ class SACWithActorRate(SAC):
     def __init__(self, *args, actor_learning_rate: float = 0.0, overlap: bool = False, **kwargs):
         self.actor_learning_rate = actor_learning_rate
         self.overlap = overlap
-        self._owed = None  # OverlappedUpdates: the gradient steps of the last update, taken during the next rollout
+        self._owed_steps, self._owed_batch = 0, 0  # OverlappedUpdates: gradient steps owed, taken in the next rollout
         self._overlapped_env = None  # its wrapper of the training env
         super().__init__(*args, **kwargs)
 
     def _excluded_save_params(self) -> list[str]:
-        return [*super()._excluded_save_params(), "actor_learning_rate", "overlap", "_owed",
-                "_overlapped_env"]  # plain SAC's zips
+        return [*super()._excluded_save_params(), "actor_learning_rate", "overlap", "_owed_steps",
+                "_owed_batch", "_overlapped_env"]  # plain SAC's zips
 
     def collect_rollouts(self, env, *args, **kwargs):
         """SB3's collection with torch on one thread: the actor's forward pass on a few observations gains
@@ -316,30 +316,23 @@ class SACWithActorRate(SAC):
     def train(self, gradient_steps: int, batch_size: int = 64) -> None:
         """SB3's update; with --overlap only owed here (OverlappedUpdates takes it during the next rollout)."""
         if self.overlap:
-            self._owed = OverlappedUpdates.owe(self._owed, gradient_steps, batch_size)
+            self._owed_steps, self._owed_batch = self._owed_steps + gradient_steps, batch_size
             return
         super().train(gradient_steps, batch_size)
 
-    def take_owed_updates(self, window: int, windows: int) -> None:
-        """The owed gradient steps due in vector step `window` of `windows` (spread evenly over the rollout),
-        then the policy back in collection mode."""
-        if not self._owed:
-            return
-        total, batch = self._owed["steps"], self._owed["batch"]
-        due = total * (window + 1) // windows - total * window // windows
-        if due > 0:
-            super().train(due, batch)
+    def take_owed_updates(self, steps: int) -> None:
+        """`steps` of the owed gradient steps (at most those owed), then the policy back in collection mode."""
+        steps = min(steps, self._owed_steps)
+        if steps > 0:
+            super().train(steps, self._owed_batch)
+            self._owed_steps -= steps
             self.policy.set_training_mode(False)
-        if window + 1 >= windows:
-            self._owed = None
 
     def learn(self, *args, **kwargs):
-        """SB3's learn; with --overlap the last update's owed steps are taken before it returns (a saved model
-        has every update of its steps)."""
+        """SB3's learn; with --overlap the steps still owed (the last update's, or a rollout's cut short) are
+        taken before it returns (a saved model has every update of its steps)."""
         model = super().learn(*args, **kwargs)
-        if self._owed:
-            super().train(self._owed["steps"], self._owed["batch"])
-            self._owed = None
+        self.take_owed_updates(self._owed_steps)
         return model
 
     def _update_learning_rate(self, optimizers) -> None:
@@ -361,25 +354,22 @@ class OverlappedUpdates(VecEnvWrapper):
     def __init__(self, venv, model: "SACWithActorRate"):
         super().__init__(venv)
         self.model = model
-        self.window, self.windows = 0, 1
+        self.window, self.windows, self.total = 0, 1, 0
 
     @staticmethod
     def around(env, model) -> "OverlappedUpdates":
-        """The wrapper of `env` for this rollout (made once per env, kept on the model)."""
+        """The wrapper of `env` for this rollout (made once per env, kept on the model), its plan: the steps owed
+        now over the rollout's vector steps."""
         wrapper = model._overlapped_env
         if wrapper is None or wrapper.venv is not env:
             wrapper = model._overlapped_env = OverlappedUpdates(env, model)
-        wrapper.window, wrapper.windows = 0, max(1, model.train_freq.frequency)
+        wrapper.window, wrapper.windows, wrapper.total = 0, max(1, model.train_freq.frequency), model._owed_steps
         return wrapper
-
-    @staticmethod
-    def owe(owed, gradient_steps: int, batch_size: int) -> dict:
-        """An update's steps added to what is still owed (a rollout cut short leaves some)."""
-        return {"steps": gradient_steps + (owed["steps"] if owed else 0), "batch": batch_size}
 
     def step_async(self, actions) -> None:
         self.venv.step_async(actions)
-        self.model.take_owed_updates(self.window, self.windows)
+        w, n, total = self.window, self.windows, self.total
+        self.model.take_owed_updates(total * (w + 1) // n - total * w // n)  # spread evenly over the rollout
         self.window += 1
 
     def step_wait(self):

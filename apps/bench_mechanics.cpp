@@ -104,6 +104,7 @@ nlohmann::json insertion_json(const gw::InsertionBenchmark& b) {
                         {"mean_max_pgs_sweeps", b.mean_pgs_sweeps},
                         {"max_penetration_mm", b.max_penetration_mm},
                         {"split_substeps", b.split_substeps},
+                        {"long_substeps", b.long_substeps},
                         {"contact_solves", b.contact_solves},
                         {"share_contact_solves_at_sweep_cap",
                          b.contact_solves > 0 ? static_cast<double>(b.capped_contact_solves) / b.contact_solves : 0.0},
@@ -233,6 +234,7 @@ int main(int argc, char** argv) {
     out["wire_nodes"] = model.nodes;
     out["dt_s"] = model.dt;
     out["substeps_per_step"] = model.substeps;
+    out["free_span"] = model.free_span;
     out["push_mm_per_s"] = a.push;
     out["friction_torque"] = model.params.friction_torque;
     out["scaling_free_space"] = scaling;

@@ -72,6 +72,7 @@ void advance_insertion(const WireModel& model, const VesselScene& scene, double 
   b.max_contacts = std::max(b.max_contacts, rep.contacts);
   b.max_penetration_mm = std::max(b.max_penetration_mm, rep.max_penetration_mm);
   b.split_substeps += rep.split_substeps;
+  b.long_substeps += rep.long_substeps;
   b.contact_solves += rep.contact_solves;
   b.capped_contact_solves += rep.capped_contact_solves;
   b.contact_checks.insert(b.contact_checks.end(), rep.contact_checks.begin(), rep.contact_checks.end());

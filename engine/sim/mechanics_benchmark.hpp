@@ -20,7 +20,8 @@ struct InsertionBenchmark {
   int max_contacts = 0;
   double mean_pgs_sweeps = 0;         // per control step: the most sweeps any of its sub-steps used
   double max_penetration_mm = 0;
-  int split_substeps = 0;  // sub-steps halved because the wire moved too fast (adaptive step)
+  int split_substeps = 0;  // sub-steps halved: the wire moved too fast, or a long one met the wall
+  int long_substeps = 0;   // sub-steps longer than the model's h taken (adaptive stepping in free lumen)
   int contact_solves = 0, capped_contact_solves = 0;  // StepReport's, summed over the run
   std::vector<ContactForceError> contact_checks;       // model.reference_contact_solve_every > 0: StepReport's
   double inserted_mm = 0;

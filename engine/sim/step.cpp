@@ -126,15 +126,12 @@ double relinearise_at_mid_motion(const WireModel& model, const VesselScene& scen
   return turned;
 }
 
-// Stage: contacts at the start of the step, linearised there (Eq. 2), with the free-motion velocities;
-// their impulses (warm-started from the previous sub-step's), a second solve where a contact's normal at
-// mid-motion turned, the velocity change added to ws.dv and the contact forces into the state. Returns
-// a problem (the wire found outside the wall) or "".
-std::string constrain_contacts(const WireModel& model, const VesselScene& scene, WireState& state, double push,
-                               double dt, StepWorkspace& ws, StepReport& rep,
-                               std::chrono::steady_clock::time_point& clock) {
+// Stage: the contacts at the start of the step (ws.contacts), found by the swept test at the free-motion
+// velocities (ws.v_contact). Returns a problem (the wire found outside the wall) or "".
+std::string detect(const WireModel& model, const VesselScene& scene, WireState& state, double push, double dt,
+                   StepWorkspace& ws, StepReport& rep, std::chrono::steady_clock::time_point& clock) {
   const int n = model.nodes, k = ws.sys.first_free, nf = n - k;
-  auto dv = ws.dv.head(6 * nf);
+  const auto dv = ws.dv.head(6 * nf);
   ws.v_contact.resize(n);
   for (int i = 0; i < n; ++i)
     ws.v_contact[i] = i < k ? Eigen::Vector3d(push * state.direction)
@@ -146,6 +143,16 @@ std::string constrain_contacts(const WireModel& model, const VesselScene& scene,
   if (outside > model.params.divergence_margin_mm)
     return "the wire is " + std::to_string(outside) + " mm outside the vessel wall (t = " +
            std::to_string(state.time) + " s)";
+  return "";
+}
+
+// Stage: the contacts found by detect, linearised at the start of the step (Eq. 2), with the free-motion
+// velocities; their impulses (warm-started from the previous sub-step's), a second solve where a contact's
+// normal at mid-motion turned, the velocity change added to ws.dv and the contact forces into the state.
+void constrain_contacts(const WireModel& model, const VesselScene& scene, WireState& state, double dt,
+                        StepWorkspace& ws, StepReport& rep, std::chrono::steady_clock::time_point& clock) {
+  const int n = model.nodes, k = ws.sys.first_free, nf = n - k;
+  auto dv = ws.dv.head(6 * nf);
   if (!ws.contacts.empty()) {
     const double mu = model.params.friction;
     const int iters = model.params.contact_iterations;
@@ -187,7 +194,6 @@ std::string constrain_contacts(const WireModel& model, const VesselScene& scene,
     }
   }
   rep.timings.constraints_s = seconds_since(clock);
-  return "";
 }
 
 // Stage: whether the step's motion would carry some free node further than kMaxSubstepTravelMm.
@@ -263,7 +269,8 @@ std::string divergence(const WireModel& model, const VesselScene* scene, WireSta
 }
 
 // One integration sub-step of length h, in the stages above. With `may_split`, returns before changing
-// the wire's motion (with `split` = true) when a node would travel more than kMaxSubstepTravelMm.
+// the wire's motion (with `split` = true) when a node would travel more than kMaxSubstepTravelMm, or when
+// the sub-step is longer than the model's contact sub-step (adaptive stepping) and finds a contact.
 StepReport substep(const WireModel& model, const VesselScene* scene, const Control& control, WireState& state,
                    double h, bool may_split, bool& split) {
   split = false;
@@ -285,13 +292,21 @@ StepReport substep(const WireModel& model, const VesselScene* scene, const Contr
   if (!free_motion(model, state, push, rotate, dt, ws, rep, clock))
     return fail(state, rep, "the implicit system is not positive definite (degenerate wire geometry)");
   std::fill(state.contact_force.begin(), state.contact_force.end(), Eigen::Vector3d::Zero());
-  if (scene && rep.free_nodes > 0)
-    if (const std::string problem = constrain_contacts(model, *scene, state, push, dt, ws, rep, clock); !problem.empty())
+  if (scene && rep.free_nodes > 0) {
+    if (const std::string problem = detect(model, *scene, state, push, dt, ws, rep, clock); !problem.empty())
       return fail(state, rep, problem);
+    if (may_split && !ws.contacts.empty() && dt > model.h * (1 + 1e-9)) {  // contacts are solved at model.h
+      split = true;
+      return rep;
+    }
+    constrain_contacts(model, *scene, state, dt, ws, rep, clock);
+  }
   if (may_split && scene && travels_too_far(model, state, ws, dt)) {  // free space has no contacts to linearise
     split = true;
     return rep;
   }
+  state.last_substep_in_contact = rep.contacts > 0;
+  rep.long_substeps = dt > model.h * (1 + 1e-9) ? 1 : 0;
   const double kinetic = integrate(model, state, push, rotate, dt, ws);
   rep.energy = ws.sys.elastic_energy + kinetic;
   if (const std::string problem = divergence(model, scene, state, ws, rep); !problem.empty())
@@ -315,6 +330,7 @@ void accumulate(StepReport& total, const StepReport& rep) {
   total.contact_checks.insert(total.contact_checks.end(), rep.contact_checks.begin(), rep.contact_checks.end());
   total.energy = rep.energy;
   total.split_substeps += rep.split_substeps;
+  total.long_substeps += rep.long_substeps;
   total.timings.detect_s += rep.timings.detect_s;
   total.timings.assemble_s += rep.timings.assemble_s;
   total.timings.solve_s += rep.timings.solve_s;
@@ -341,8 +357,17 @@ StepReport adaptive_substep(const WireModel& model, const VesselScene* scene, co
 
 StepReport step(const WireModel& model, const VesselScene* scene, const Control& control, WireState& state) {
   StepReport total;
-  for (int i = 0; i < model.substeps; ++i) {
-    accumulate(total, adaptive_substep(model, scene, control, state, model.h, kMaxSubstepHalvings));
+  for (int i = 0; i < model.substeps;) {
+    // Adaptive stepping: after a sub-step that met no wall, the longest power-of-two run of sub-steps
+    // (up to model.free_span) that the step has left is taken as one; halved again where it meets the wall.
+    int span = 1, halvings = kMaxSubstepHalvings;
+    if (!state.last_substep_in_contact)
+      while (2 * span <= model.free_span && i + 2 * span <= model.substeps) {
+        span *= 2;
+        ++halvings;
+      }
+    accumulate(total, adaptive_substep(model, scene, control, state, span * model.h, halvings));
+    i += span;
     if (!total.ok) break;
   }
   return total;

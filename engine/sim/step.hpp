@@ -1,7 +1,9 @@
 #pragma once
 // The pure step function (like mj_step): advances `state` by model.dt under `control`, in
 // model.substeps integration sub-steps of model.h (one linearisation each); a sub-step in which the
-// wire would move too far for its linearised contacts (a whipping tip) is halved, recursively.
+// wire would move too far for its linearised contacts (a whipping tip) is halved, recursively. With
+// adaptive stepping (params.max_free_substep_s) a sub-step after one that met no wall is up to
+// model.free_span sub-steps long, and halved before it changes anything where it finds a contact.
 // Stages, each timed: assemble (beam forces and tangent stiffness, Eq. 1), solve (block-tridiagonal
 // free motion), detect (wall proximity at the predicted positions), constraints (contact impulses by
 // projected Gauss-Seidel on W = H A^-1 H^T, Eq. 2), then integrate and check for divergence.
@@ -37,7 +39,9 @@ struct StepReport {
   int capped_contact_solves = 0;  // of those, the ones whose solve stopped at its sweep cap unconverged
   std::vector<ContactForceError> contact_checks;  // model.reference_contact_solve_every > 0: one per check
   double energy = 0;              // elastic + kinetic energy [mN mm = uJ]
-  int split_substeps = 0;         // sub-steps halved because the wire moved too fast for one (see step.cpp)
+  int split_substeps = 0;         // sub-steps halved because the wire moved too fast for one, or a long one
+                                  // (adaptive stepping) met the wall (see step.cpp)
+  int long_substeps = 0;          // sub-steps longer than model.h taken (adaptive stepping in free lumen)
   StepTimings timings;            // summed over the sub-steps
 };
 

@@ -14,6 +14,7 @@ WireModel make_wire_model(const WireParams& p, double dt) {
   m.dt = dt;
   m.substeps = std::max(1, static_cast<int>(std::ceil(dt / p.max_substep_s - 1e-9)));
   m.h = dt / m.substeps;
+  while (m.free_span < 16 && 2.0 * m.free_span * m.h <= p.max_free_substep_s * (1 + 1e-9)) m.free_span *= 2;
   m.radius_mm = 0.5 * p.diameter_mm;
 
   // Arc positions measured from the tip: fine spacing over the distal region, then body spacing,

@@ -16,6 +16,9 @@ struct WireModel {
   double dt = 0.01;                        // control period: one step() call advances this much [s]
   int substeps = 1;                        // integration sub-steps per step() (params.max_substep_s)
   double h = 0.01;                         // integration sub-step dt / substeps [s]
+  // Adaptive stepping (params.max_free_substep_s): in free lumen up to this many sub-steps of h are taken
+  // as one; a power of two, 1 = off.
+  int free_span = 1;
   int nodes = 0;
   double radius_mm = 0;                    // wire radius (contact thickness)
   std::vector<double> arc_from_tip;        // per node: arc length to the distal tip [mm]

@@ -17,7 +17,7 @@ bool known_field(const std::string& k) {
                                 "density_kg_per_mm3", "shear_coefficient", "damping_mass", "damping_stiffness",
                                 "element_length_mm", "tip_element_length_mm", "fine_region_mm", "friction",
                                 "contact_margin_mm", "divergence_margin_mm", "max_speed_mm_per_s",
-                                "contact_iterations", "max_substep_s", "inlet_clearance_mm", "contact_slack_mm", "friction_torque",
+                                "contact_iterations", "max_substep_s", "max_free_substep_s", "inlet_clearance_mm", "contact_slack_mm", "friction_torque",
                                 "per_axis_rotational_inertia", "comment"};
   for (const char* n : names)
     if (k == n) return true;
@@ -44,6 +44,8 @@ void check_wire_params(const WireParams& p, const std::string& where) {
   positive(p.max_speed_mm_per_s, "max_speed_mm_per_s");
   positive(p.max_substep_s, "max_substep_s");
   positive(p.contact_slack_mm, "contact_slack_mm");
+  if (!(p.max_free_substep_s >= 0) || !std::isfinite(p.max_free_substep_s))
+    throw std::runtime_error(where + ": field 'max_free_substep_s' must be >= 0 (0: off)");
   if (!(p.inlet_clearance_mm >= 0)) throw std::runtime_error(where + ": field 'inlet_clearance_mm' must be >= 0");
   if (p.contact_iterations < 1) throw std::runtime_error(where + ": field 'contact_iterations' must be >= 1");
   if (p.tip_length_mm >= p.length_mm) throw std::runtime_error(where + ": tip_length_mm must be < length_mm");
@@ -82,6 +84,7 @@ WireParams load_wire_params(const std::string& json_path) {
   get("divergence_margin_mm", p.divergence_margin_mm);
   get("max_speed_mm_per_s", p.max_speed_mm_per_s);
   get("max_substep_s", p.max_substep_s);
+  get("max_free_substep_s", p.max_free_substep_s);
   get("inlet_clearance_mm", p.inlet_clearance_mm);
   get("contact_slack_mm", p.contact_slack_mm);
   if (j.contains("contact_iterations")) {

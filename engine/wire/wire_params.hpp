@@ -34,6 +34,12 @@ struct WireParams {
   // penetrates beyond ~1.5 ms per linearisation in the training Y and fails in the coronary tree at
   // 1 ms; 0.5 ms inserts through the coronary tree with < 0.01 mm penetration.
   double max_substep_s = 0.0005;
+  // Adaptive stepping: in free lumen (the last sub-step met no wall) up to this long a sub-step, a
+  // power-of-two multiple of the contact sub-step (rounded down, at most 16 of them); a long sub-step
+  // whose swept contact test finds the wall is halved before it changes anything, down to max_substep_s,
+  // so every contact is still solved at max_substep_s. 0 (the default): every sub-step max_substep_s.
+  // The wire in an aorta-wide lumen is free in ~80% of its sub-steps, in a coronary tree in ~2%.
+  double max_free_substep_s = 0;
   double max_speed_mm_per_s = 1e5;     // any node faster than 100 m/s = exploding simulation
   int contact_iterations = 100;        // projected Gauss-Seidel sweeps per sub-step (at most)
   // Friction with a lever arm: wall friction acts at the wire's surface (radius r from the axis), so its

@@ -57,6 +57,9 @@ struct WireState {
   double proximal_rotation_rad = 0;
   double time = 0;
   long steps = 0;
+  // Whether the last sub-step found a contact (adaptive stepping, WireModel::free_span: only a sub-step
+  // after a free one may be long). True in a new state: its first sub-step is a contact one.
+  bool last_substep_in_contact = true;
   std::string diverged;                  // non-empty once a step failed: the problem; reset to go on
   std::vector<WallCandidates> wall_cache;  // contact broad-phase cache (nodes, then element midpoints)
   const void* wall_cache_scene = nullptr;  // scene the cache was built for

@@ -2,12 +2,21 @@
 // Shared helpers for the mechanics tests: small uniform beams and settling to rest.
 #include <Eigen/Core>
 #include <cmath>
+#include <fstream>
+#include <string>
 
 #include "engine/sim/step.hpp"
 #include "engine/wire/wire_model.hpp"
 #include "engine/wire/wire_state.hpp"
 
 namespace gw::test {
+
+// Writes `text` to GW_BINARY_DIR/`name` (a wire parameter file for a test); returns its path.
+inline std::string write_test_file(const std::string& name, const std::string& text) {
+  const std::string path = std::string(GW_BINARY_DIR) + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
 
 // A uniform straight beam (no curved tip, body modulus everywhere) of `length_mm` with elements of
 // `element_mm`; the wire's own diameter and moduli unless overridden afterwards.

@@ -6,15 +6,12 @@
 #include "engine/sim/assemble_system.hpp"
 #include "engine/wire/node_rotational_inertia.hpp"
 #include "engine/wire/wire_model.hpp"
+#include "mechanics_helpers.hpp"
 
 using namespace gw;
 
 namespace {
-std::string write_json(const std::string& text) {
-  const std::string path = std::string(GW_BINARY_DIR) + "/physics_settings_test.json";
-  std::ofstream(path) << text;
-  return path;
-}
+std::string write_json(const std::string& text) { return test::write_test_file("physics_settings_test.json", text); }
 }  // namespace
 
 TEST_CASE("friction torque and per-axis inertia are off by default and load from the wire JSON", "[params]") {

@@ -4,15 +4,12 @@
 #include <fstream>
 
 #include "engine/wire/wire_model.hpp"
+#include "mechanics_helpers.hpp"
 
 using namespace gw;
 
 namespace {
-std::string write_temp(const std::string& text) {
-  const std::string path = std::string(GW_BINARY_DIR) + "/wire_params_test.json";
-  std::ofstream(path) << text;
-  return path;
-}
+std::string write_temp(const std::string& text) { return test::write_test_file("wire_params_test.json", text); }
 }  // namespace
 
 TEST_CASE("the shipped 0.014 inch wire JSON loads and matches the defaults", "[params]") {

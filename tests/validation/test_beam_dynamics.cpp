@@ -26,12 +26,13 @@ struct Vibration {
 };
 
 // A beam clamped at the inlet (free length `length`, along +x), displaced in y by `amplitude` times the
-// analytic shape of `mode` (frames turned to the shape's slope), at rest.
+// analytic shape of `mode` (frames turned to the shape's slope), at rest. Steps of span x h, in sub-steps of h
+// and, with span > 1, of span x h in free space (adaptive stepping: all of them after the first step).
 Vibration released_mode(double length, double element, double h, int mode, double amplitude,
-                        bool per_axis_inertia = false) {
-  WireParams p = beam_params(length + 10.0, element, h);
+                        bool per_axis_inertia = false, int span = 1) {
+  WireParams p = with_free_span(beam_params(length + 10.0, element, h), span);
   p.per_axis_rotational_inertia = per_axis_inertia;
-  Vibration v{make_wire_model(p, h), {}, length};
+  Vibration v{make_wire_model(p, span * h), {}, length};
   v.state = make_initial_state(v.model, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), 0.0, length);
   const int k = first_free_node(v.model, v.state);
   for (int i = k; i < v.model.nodes; ++i) {
@@ -60,7 +61,7 @@ double modal_coordinate(const Vibration& v, int mode) {
 // Angular frequency from the zero crossings (linear interpolation) of the modal coordinate over
 // `periods` expected periods.
 double measured_omega(Vibration& v, int mode, double expected_omega, double periods) {
-  const double h = v.model.h;
+  const double h = v.model.dt;
   const int steps = static_cast<int>(std::ceil(periods * 2.0 * M_PI / expected_omega / h));
   std::vector<double> crossings;
   double prev = modal_coordinate(v, mode);
@@ -95,18 +96,21 @@ TEST_CASE("the first three bending frequencies of a clamped-free beam match beta
   // mode is released from its analytic shape (0.01 mm amplitude: linear regime) and stepped with a
   // sub-step h = 0.01 / omega_n, where backward Euler's own frequency error, 1 - atan(omega h) / (omega h)
   // ~ (omega h)^2 / 3 = 3e-5, is far below the tolerance (and its damping, exp(-pi omega h) per period,
-  // leaves the zero crossings alone). Both inertia settings (rotary inertia is a (r / L)^2 correction).
+  // leaves the zero crossings alone). Both inertia settings (rotary inertia is a (r / L)^2 correction). Also with
+  // adaptive stepping, free sub-steps 4 h (its error (4 omega h)^2 / 3 = 5e-4).
   const double length = 50.0;
+  const int span = GENERATE(1, 4);
   for (int run = 0; run < 6; ++run) {
     const int mode = run % 3;
     const bool per_axis = run >= 3;
     const WireModel probe = make_wire_model(beam_params(length + 10.0, 1.0, 1e-4), 1e-4);
     const double omega = theory_omega(probe, mode, length);
-    Vibration v = released_mode(length, 1.0, 0.01 / omega, mode, 0.01, per_axis);
+    Vibration v = released_mode(length, 1.0, 0.01 / omega, mode, 0.01, per_axis, span);
     const double measured = measured_omega(v, mode, omega, 4.0);
     INFO("mode " << mode + 1 << ": theory " << omega / (2 * M_PI) << " Hz, measured " << measured / (2 * M_PI)
                  << " Hz, error " << 100.0 * (measured / omega - 1) << "%");
-    WARN("bending mode " << mode + 1 << (per_axis ? " (per-axis inertia)" : "") << ": f = " << measured / (2 * M_PI)
+    WARN("bending mode " << mode + 1 << (per_axis ? " (per-axis inertia)" : "") << (span > 1 ? " (adaptive)" : "")
+                         << ": f = " << measured / (2 * M_PI)
                          << " Hz against " << omega / (2 * M_PI) << " Hz (" << 100.0 * (measured / omega - 1) << "%)");
     CHECK(measured == Approx(omega).epsilon(0.02));
   }
@@ -182,9 +186,10 @@ TEST_CASE("tip deflection converges at second order in element length", "[valida
   // element's one-point shear integration predicts a relative error l^2 / (4 L^2): order 2. Observed
   // order from element lengths 8, 4, 2, 1 mm on L = 40 mm: log2(e(l) / e(l/2)) within 2 +- 0.2.
   const double length = 40.0, load = 0.05;
+  const int span = GENERATE(1, 4);  // adaptive stepping: 2 ms sub-steps in free space
   std::vector<double> errors;
   for (double l : {8.0, 4.0, 2.0, 1.0}) {
-    WireParams p = beam_params(length + 16.0, l, 5e-4);
+    WireParams p = with_free_span(beam_params(length + 16.0, l, 5e-4), span);
     p.damping_mass = 1.0;
     p.damping_stiffness = 1e-3;
     const WireModel m = make_wire_model(p, 0.01);
@@ -216,14 +221,17 @@ TEST_CASE("tip position converges at first order in the time step (backward Eule
   // observed order log2(d(h) / d(h/2)) within 1 +- 0.15. A 50 mm cantilever released from its first
   // mode shape (1 mm amplitude: geometrically nonlinear enough to exercise the linearisation), tip y at
   // t = 5 ms, shipped Rayleigh damping, sub-steps 100, 50, 25, 12.5, 6.25 us (free space: no adaptive split).
+  // Also with adaptive stepping: steps of h in sub-steps of h / 4 and, in free space, of h (all but the first step's).
   const double length = 50.0, t_end = 5e-3;
+  const int span = GENERATE(1, 4);
   std::vector<double> tip;
   for (double h : {1e-4, 5e-5, 2.5e-5, 1.25e-5, 6.25e-6}) {
     Vibration v = released_mode(length, 1.0, h, 0, 1.0);
     WireParams p = v.model.params;
     p.damping_mass = 1.0;
     p.damping_stiffness = 1e-3;
-    v.model = make_wire_model(p, h);
+    p.max_substep_s = h / span;
+    v.model = make_wire_model(with_free_span(p, span), h);
     const int steps = static_cast<int>(std::round(t_end / h));
     for (int s = 0; s < steps; ++s) REQUIRE(step(v.model, nullptr, Control{}, v.state).ok);
     tip.push_back(v.state.x.back().y());

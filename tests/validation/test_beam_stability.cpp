@@ -14,8 +14,8 @@ namespace {
 // Lateral tip deflection of a clamped-free column (free length `length`, 1 mm elements) after a slow
 // ramp of an axial compressive dead load P with a lateral imperfection load 1e-4 P, settled with heavy
 // mass damping.
-double column_deflection(double length, double load) {
-  WireParams p = beam_params(length + 10.0, 1.0, 5e-4);
+double column_deflection(double length, double load, int span) {
+  WireParams p = with_free_span(beam_params(length + 10.0, 1.0, 5e-4), span);
   p.damping_mass = 200.0;  // overdamps the soft first mode near the critical load
   p.damping_stiffness = 1e-4;
   const WireModel m = make_wire_model(p, 0.01);
@@ -37,12 +37,14 @@ TEST_CASE("a clamped-free column buckles at P_cr = pi^2 EI / (4 L^2)", "[validat
   // imperfection amplified by 1 / (1 - P / P_cr)) at 0.97 P_cr and be buckled (above 10% of L, the
   // elastica's ~0.9 sqrt(P / P_cr - 1) L) at 1.03 P_cr. The critical load is then located by bisection
   // on "deflection above 5% of L" and reported.
+  // Also with adaptive stepping (2 ms sub-steps in free space).
   const double length = 40.0;
+  const int span = GENERATE(1, 4);
   const WireModel probe = make_wire_model(beam_params(length + 10.0, 1.0, 5e-4), 0.01);
   const double ei = probe.stiffness.back()[4];
   const double p_cr = M_PI * M_PI * ei / (4.0 * length * length);
-  const double below = column_deflection(length, 0.97 * p_cr);
-  const double above = column_deflection(length, 1.03 * p_cr);
+  const double below = column_deflection(length, 0.97 * p_cr, span);
+  const double above = column_deflection(length, 1.03 * p_cr, span);
   INFO("P_cr " << p_cr << " mN: deflection at 0.97 P_cr " << below << " mm, at 1.03 P_cr " << above << " mm");
   REQUIRE(below >= 0);
   REQUIRE(above >= 0);
@@ -51,7 +53,7 @@ TEST_CASE("a clamped-free column buckles at P_cr = pi^2 EI / (4 L^2)", "[validat
   double lo = 0.9, hi = 1.1;
   for (int i = 0; i < 7; ++i) {
     const double mid = 0.5 * (lo + hi);
-    (column_deflection(length, mid * p_cr) > 0.05 * length ? hi : lo) = mid;
+    (column_deflection(length, mid * p_cr, span) > 0.05 * length ? hi : lo) = mid;
   }
   WARN("buckling: measured P_cr / theory = " << 0.5 * (lo + hi) << " (+-" << 0.5 * (hi - lo) << ")");
   CHECK(0.5 * (lo + hi) == Approx(1.0).margin(0.03));
@@ -60,8 +62,10 @@ TEST_CASE("a clamped-free column buckles at P_cr = pi^2 EI / (4 L^2)", "[validat
 TEST_CASE("a straight wire twists by phi = T L / (G J) under an end torque", "[validation][statics]") {
   // Reference: Saint-Venant torsion of a circular shaft, phi = T L / (G J), J = pi r^4 / 2. Tolerance 1%.
   // 40 mm free length, end torque giving 0.5 rad (ramped), settled.
+  // Also with adaptive stepping (2 ms sub-steps in free space).
   const double length = 40.0;
-  WireParams p = beam_params(length + 10.0, 1.0, 5e-4);
+  const int span = GENERATE(1, 4);
+  WireParams p = with_free_span(beam_params(length + 10.0, 1.0, 5e-4), span);
   p.damping_mass = 1.0;
   p.damping_stiffness = 1e-3;
   const WireModel m = make_wire_model(p, 0.01);

@@ -31,6 +31,13 @@ inline WireParams beam_params(double length_mm, double element_mm, double h) {
   return p;
 }
 
+// Adaptive stepping (WireParams::max_free_substep_s, issue 62): the physics tests run at both settings, every
+// sub-step the test's own (span 1), and sub-steps `span` times as long wherever the wire meets no wall.
+inline WireParams with_free_span(WireParams p, int span) {
+  p.max_free_substep_s = span > 1 ? span * p.max_substep_s : 0;
+  return p;
+}
+
 // Mass per length rho A of the model's wire [kg/mm].
 inline double mass_per_length(const WireModel& m) {
   return m.params.density_kg_per_mm3 * M_PI * m.radius_mm * m.radius_mm;

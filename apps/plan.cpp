@@ -10,6 +10,7 @@
 #include "base/util/parse_point.hpp"
 #include "engine/wire/wire_params.hpp"
 #include "lib/runner/controller.hpp"
+#include "lib/runner/controller_guides.hpp"
 #include "lib/runner/heart_motion.hpp"
 #include "lib/runner/navigation_anatomy.hpp"
 #include "lib/runner/navigation_outputs.hpp"
@@ -104,6 +105,7 @@ int plan_main(PlanArgs a) {
   gw::Anatomy anatomy = nav.anatomy;
   gw::apply_heart_settings(anatomy, a.heart);
   const gw::NavigationTask task = gw::make_navigation_task(config, wire, {anatomy});
+  a.plan.guides = gw::controller_guides(gw::default_policy_path());
   const gw::ProcedurePlan plan = gw::plan_procedure(task, 0, a.target, a.seed, a.plan);
   nlohmann::json doc = plan_document(a, plan, config);
   const gw::EpisodeTrace trace = replay_plan(task, a, plan, doc);

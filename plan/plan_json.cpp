@@ -14,6 +14,7 @@ nlohmann::json stats_json(const SearchStats& s) {
           {"ended", s.ended},
           {"wrong_branch", s.wrong_branch},
           {"found", s.found},
+          {"guided", s.guided},
           {"nearest_target_mm", s.nearest_target_mm},
           {"best_tip", {s.best_tip.x(), s.best_tip.y(), s.best_tip.z()}},
           {"seconds", s.seconds},
@@ -38,6 +39,7 @@ nlohmann::json plan_to_json(const ProcedurePlan& plan) {
                       {"tip_to_target_mm", plan.tip_to_target_mm},
                       {"actions", actions}};
   if (plan.kind == PlanKind::kNone) j["why"] = plan.why;
+  if (!plan.guide.empty()) j["guide"] = plan.guide;
   j["search"]["strict"] = stats_json(plan.strict);
   if (plan.procedure.maneuvers > 0) j["search"]["procedure"] = stats_json(plan.procedure);
   return j;

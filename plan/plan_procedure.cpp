@@ -8,6 +8,7 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <map>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -71,6 +72,9 @@ class Search {
     stats_.best_tip = root.tip;
     visited_.insert(cell_of(root));
     add(std::move(start));
+    if (strict_)
+      for (const PlanGuide& g : o_.guides)
+        if (static_cast<int>(found_.size()) < o_.successes && stats_.env_steps < budget_) try_guide(0, g);
     while (!open_.empty() && stats_.env_steps < budget_ && static_cast<int>(found_.size()) < o_.successes) {
       const Entry e = *open_.begin();
       ++stats_.maneuvers;
@@ -86,6 +90,11 @@ class Search {
 
   const std::deque<Node>& nodes() const { return nodes_; }
   const SearchStats& stats() const { return stats_; }
+  // The guide whose procedure node `id` ends ("": a node of the search).
+  std::string guide_of(int id) const {
+    const auto it = guide_of_.find(id);
+    return it == guide_of_.end() ? std::string() : it->second;
+  }
 
  private:
   struct Entry {
@@ -130,6 +139,17 @@ class Search {
     if (--pending_[static_cast<std::size_t>(n)] == 0) nodes_[static_cast<std::size_t>(n)].state = EpisodeState{};
   }
 
+  // One env step of `child` with `action`, recorded in it (action, control, peak forces) and counted.
+  StepOutcome step_child(Node& child, const Action& action) {
+    child.in_control.push_back(child.state.in_control);
+    child.applied.push_back(action);
+    const StepOutcome out = step_episode(task_, child.state, action);
+    ++stats_.env_steps;
+    child.peak_tip_mN = std::max(child.peak_tip_mN, out.info.tip_force_mN);
+    child.peak_node_mN = std::max(child.peak_node_mN, out.info.wall_force_peak_node_mN);
+    return out;
+  }
+
   // Simulates maneuver `m` from node `id`; keeps the child when it stays within the budget and the rules and
   // reaches a new cell (or the target).
   void try_maneuver(int id, const Maneuver& m) {
@@ -143,13 +163,7 @@ class Search {
     const int entries_before = s.procedure.attempts_used;
     bool reached = false;
     for (int k = 0; k < o_.hold_steps && !reached; ++k) {
-      const Action action{m.rotation, m.insertion};
-      child.in_control.push_back(s.in_control);
-      child.applied.push_back(action);
-      const StepOutcome out = step_episode(task_, s, action);
-      ++stats_.env_steps;
-      child.peak_tip_mN = std::max(child.peak_tip_mN, out.info.tip_force_mN);
-      child.peak_node_mN = std::max(child.peak_node_mN, out.info.wall_force_peak_node_mN);
+      const StepOutcome out = step_child(child, Action{m.rotation, m.insertion});
       if (out.info.tip_force_mN > 1000.0 * o_.force_limit_N) return void(++stats_.over_force);
       if (strict_ && (out.info.wrong_branch || s.procedure.attempts_used > entries_before))
         return void(++stats_.wrong_branch);
@@ -172,6 +186,34 @@ class Search {
     add(std::move(child));
   }
 
+  // Runs guide `g` from node `id` until its episode ends, the budget is spent, a step goes over the force budget or
+  // it enters a wrong branch (the strict search's rules); one that reaches the target is a plan found.
+  void try_guide(int id, const PlanGuide& g) {
+    Node child;
+    child.parent = id;
+    child.state = nodes_[static_cast<std::size_t>(id)].state;
+    EpisodeState& s = child.state;
+    if (g.begin) g.begin();
+    while (stats_.env_steps < budget_) {
+      const StepOutcome out = step_child(child, g.act(s.obs));
+      if (out.info.tip_force_mN > 1000.0 * o_.force_limit_N) return void(++stats_.over_force);
+      if (out.info.wrong_branch || s.procedure.attempts_used > 0) return void(++stats_.wrong_branch);
+      if (tip_to_target_mm(s) < stats_.nearest_target_mm) {
+        stats_.nearest_target_mm = tip_to_target_mm(s);
+        stats_.best_tip = s.tip;
+      }
+      if (out.info.success) {
+        nodes_.push_back(std::move(child));
+        pending_.push_back(1);  // its state stays: the plan's end
+        found_.push_back(static_cast<int>(nodes_.size()) - 1);
+        guide_of_[found_.back()] = g.name;
+        ++stats_.guided;
+        return;
+      }
+      if (out.terminated || out.truncated || !out.info.problem.empty()) return void(++stats_.ended);
+    }
+  }
+
   const NavigationTask& task_;
   const PlanOptions& o_;
   const bool strict_;
@@ -182,6 +224,7 @@ class Search {
   long order_ = 0;
   std::set<std::array<long, 4>> visited_;
   std::vector<int> found_;
+  std::map<int, std::string> guide_of_;  // found guide procedures: node id -> guide name
   bool dropped_ = false;  // open entries were dropped past kMaxOpen: an empty open list is then no exhaustion
   SearchStats stats_;
 };
@@ -270,7 +313,9 @@ ProcedurePlan plan_procedure(const NavigationTask& task, int anatomy, int target
   const std::vector<int> strict_found = strict.run(root);
   ProcedurePlan plan;
   if (!strict_found.empty()) {
-    plan = plan_of(task, strict.nodes(), lowest_force(strict.nodes(), strict_found), PlanKind::kStrict);
+    const int best = lowest_force(strict.nodes(), strict_found);
+    plan = plan_of(task, strict.nodes(), best, PlanKind::kStrict);
+    plan.guide = strict.guide_of(best);
     plan.strict = strict.stats();
     return plan;
   }

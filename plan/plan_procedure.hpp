@@ -13,12 +13,16 @@
 // used up and the search goes on from the next best node, e.g. one pulled back. First a strict search (no
 // child that enters a wrong branch), then, if it finds nothing, a procedure search (wrong branches entered and
 // pulled out of again). Among the first `successes` plans found the one with the lowest peak tip force wins.
+// Guides (PlanOptions::guides: closed-loop controllers, e.g. the scripted rule) are run first by the strict search,
+// each one episode from the start under the planning task and the force budget; a guide that reaches the target
+// gives a plan like any other, so the plans reach at least what the guides reach from the same start.
 //
 // Inputs: a task made with planning_task_config (act/2; throws std::invalid_argument otherwise), the anatomy
 // and target, the episode seed (the start orientation), options. Output: the plan, or what was tried and where
 // the tip got nearest, and why none was found: the course narrows below the wire (then nothing is searched), the
 // search ran out of ways forward, or of budget. Deterministic: the same inputs give the same plan.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,6 +33,14 @@
 
 namespace gw {
 
+// A closed-loop controller the strict search runs first from the start: the action for the planning task's
+// observation (obs/5; a rotation-only controller pushes at +1).
+struct PlanGuide {
+  std::string name;
+  std::function<Action(const Observation&)> act;
+  std::function<void()> begin;  // called before its episode (may be empty)
+};
+
 struct PlanOptions {
   double force_limit_N = 1.5;      // budget: no env step's tip force (StepInfo::tip_force_mN) above this
   int hold_steps = 5;              // env steps one maneuver holds its action (0.2 s at 0.04 s a step)
@@ -37,6 +49,7 @@ struct PlanOptions {
   double off_course_weight = 2.0;  // cost per mm of the tip's distance from the course
   double force_weight = 10.0;      // cost (mm) per N of peak tip force so far
   bool strict_only = false;        // skip the procedure search
+  std::vector<PlanGuide> guides;   // run first by the strict search, in order (none: the search alone)
 };
 
 enum class PlanKind { kNone, kStrict, kProcedure };
@@ -51,6 +64,7 @@ struct SearchStats {
   int ended = 0;                    // children whose episode ended without reaching (stall, wire out, diverged)
   int wrong_branch = 0;             // children dropped for entering a wrong branch (strict search)
   int found = 0;                    // plans found
+  int guided = 0;                   // of those, guides' procedures (strict search)
   double nearest_target_mm = 0.0;   // the nearest any node's tip got to the target (straight distance)
   Eigen::Vector3d best_tip = Eigen::Vector3d::Zero();
   double seconds = 0.0;             // wall time
@@ -69,6 +83,7 @@ struct ProcedurePlan {
   Eigen::Vector3d tip_end = Eigen::Vector3d::Zero();  // where the tip ended (none found: the nearest node's)
   double tip_to_target_mm = 0.0;    // the tip's straight distance to the target at the end (none found: the nearest)
   SearchStats strict, procedure;    // procedure: left at zero when the strict search found a plan
+  std::string guide;                // the guide whose procedure this is ("": the search's own)
   // None found: why, in words. "unreachable: ..." where the course narrows below the wire (narrowest_passage; no
   // search is run), "search exhausted: ..." where every way forward was tried, "budget spent: ..." otherwise.
   std::string why;

@@ -374,7 +374,7 @@ void run_row_columns(const EvaluationRow& row, const std::string& policy, const 
   if (o.reachability_seeds > 0) r["ceiling"] = row_ceiling(default_task, r["results"], o.threads);
   if (o.planned_seeds > 0)  // the planner in its own task: act/2, control everywhere (plan/planning_task.hpp)
     r["planned"] = row_planned(make_navigation_task(planning_task_config(base_config), wire, anatomies),
-                               o.planned_seeds, o.seed, o.plan, o.threads);
+                               o.planned_seeds, o.seed, o.plan, o.policy, o.threads);
 }
 
 // One row run here: its record with its columns (or "skipped" with the reason) and its wall time; progress

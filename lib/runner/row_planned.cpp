@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "base/util/median.hpp"
+#include "lib/runner/controller_guides.hpp"
 #include "lib/runner/evaluation_table.hpp"
 
 namespace gw {
@@ -18,9 +19,11 @@ struct PlannedTarget {
   std::string error;
 };
 
-void plan_target(const NavigationTask& task, int seeds, std::uint64_t first_seed, const PlanOptions& o,
-                 PlannedTarget& t) {
+void plan_target(const NavigationTask& task, int seeds, std::uint64_t first_seed, const PlanOptions& options,
+                 const std::string& guide_actor, PlannedTarget& t) {
   try {
+    PlanOptions o = options;  // guides of its own: a controller is not shared between threads
+    if (!guide_actor.empty()) o.guides = controller_guides(guide_actor);
     for (int k = 0; k < seeds; ++k) {
       t.seed = first_seed + static_cast<std::uint64_t>(k);
       t.plan = plan_procedure(task, t.anatomy, t.target, t.seed, o);
@@ -45,6 +48,7 @@ nlohmann::json target_json(const NavigationTask& task, const PlannedTarget& t) {
                       {"env_steps", p.strict.env_steps + p.procedure.env_steps},
                       {"seconds", p.strict.seconds + p.procedure.seconds}};
   if (p.kind == PlanKind::kNone && t.error.empty()) j["why"] = p.why;
+  if (!p.guide.empty()) j["guide"] = p.guide;
   if (!t.error.empty()) j["error"] = t.error;
   return j;
 }
@@ -52,7 +56,7 @@ nlohmann::json target_json(const NavigationTask& task, const PlannedTarget& t) {
 }  // namespace
 
 nlohmann::json row_planned(const NavigationTask& planning_task, int seeds, std::uint64_t first_seed,
-                           const PlanOptions& options, int threads) {
+                           const PlanOptions& options, const std::string& guide_actor, int threads) {
   std::map<std::string, PlannedTarget> by_key;  // target_key order
   for (std::size_t a = 0; a < planning_task.anatomies.size(); ++a)
     for (std::size_t k = 0; k < planning_task.courses[a].size(); ++k) {
@@ -65,7 +69,8 @@ nlohmann::json row_planned(const NavigationTask& planning_task, int seeds, std::
   for (auto& [key, t] : by_key) todo.push_back(&t);
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
-    for (std::size_t i; (i = next++) < todo.size();) plan_target(planning_task, seeds, first_seed, options, *todo[i]);
+    for (std::size_t i; (i = next++) < todo.size();)
+      plan_target(planning_task, seeds, first_seed, options, guide_actor, *todo[i]);
   };
   std::vector<std::thread> pool;
   for (int k = 1; k < std::max(1, threads); ++k) pool.emplace_back(worker);

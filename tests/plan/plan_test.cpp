@@ -102,7 +102,7 @@ TEST_CASE("plan: bad input is refused naming the problem", "[plan]") {
 TEST_CASE("plan: a row's planned figure covers every target of its anatomies", "[plan]") {
   gw::PlanOptions o;
   o.successes = 1;
-  const nlohmann::json p = gw::row_planned(y_task(), 1, 3, o, 2);
+  const nlohmann::json p = gw::row_planned(y_task(), 1, 3, o, "", 2);
   CHECK(p["targets"] == 2);
   CHECK(p["planned"] == 2);
   CHECK(p["strict"].get<int>() <= 2);
@@ -116,7 +116,7 @@ TEST_CASE("plan: a row's planned figure covers every target of its anatomies", "
   CHECK(p["per_target"][0]["target"] == 1);
   CHECK(p["per_target"][1]["target"] == 2);
   o.max_env_steps = 10;  // nothing can be found: every target says so, with its nearest approach
-  const nlohmann::json none = gw::row_planned(y_task(), 2, 0, o, 1);
+  const nlohmann::json none = gw::row_planned(y_task(), 2, 0, o, "", 1);
   CHECK(none["planned"] == 0);
   for (const nlohmann::json& t : none["per_target"]) {
     CHECK(t["found"] == "none");
@@ -164,7 +164,7 @@ TEST_CASE("plan: a target behind a lumen narrower than the wire is reported unre
   CHECK_THAT(plan.why, Catch::Contains("below the wire's radius 0.178 mm"));
   CHECK(gw::plan_to_json(plan)["why"] == plan.why);
   CHECK(gw::plan_procedure(task, 0, 1, 0, {}).kind != gw::PlanKind::kNone);  // the other branch is untouched
-  const nlohmann::json row = gw::row_planned(task, 1, 0, {}, 1);
+  const nlohmann::json row = gw::row_planned(task, 1, 0, {}, "", 1);
   CHECK(row["unreachable"] == 1);
   CHECK(row["per_target"][1]["why"] == plan.why);
 }
@@ -187,4 +187,45 @@ TEST_CASE("plan: a search that runs out of ways forward says so, and one that ru
   CHECK(boxed.strict.env_steps < o.max_env_steps);
   CHECK_THAT(boxed.why, Catch::StartsWith("search exhausted: "));
   CHECK(gw::plan_to_json(boxed)["search"]["strict"]["exhausted"] == true);
+}
+
+TEST_CASE("plan: a guide that reaches the target gives a plan that replays, one that enters the wrong branch is dropped",
+          "[plan][guide]") {
+  // Guides: the scripted rule as it is (it aims away from the wrong branch, turning one way) and an "anti-rule"
+  // that turns the tip at the wrong branch and holds it there. Seed 3, both targets of the training Y.
+  auto rule = [](double turn) {
+    return gw::PlanGuide{"rule", [turn](const gw::Observation& obs) {
+                           return gw::Action{obs[gw::obs_index::kOmega] > -0.95 ? turn : 0.0, 1.0};
+                         }, {}};
+  };
+  gw::PlanGuide wrong{"aim-at-wrong", [](const gw::Observation& obs) {
+                        return gw::Action{obs[gw::obs_index::kOmega] < 0.95 ? 1.0 : 0.0, 1.0};
+                      }, {}};
+  int begun = 0;
+  wrong.begin = [&begun] { ++begun; };
+  for (const int target : {1, 2}) {
+    gw::PlanOptions o;
+    o.successes = 1;
+    o.strict_only = true;
+    o.guides = {wrong, rule(1.0)};
+    const gw::ProcedurePlan plan = gw::plan_procedure(y_task(), 0, target, 3, o);
+    INFO("target " << target << ": " << gw::plan_to_json(plan).dump().substr(0, 600));
+    REQUIRE(plan.kind == gw::PlanKind::kStrict);
+    CHECK(plan.guide == "rule");  // the first plan found was the rule's: the search did not run
+    CHECK(plan.strict.guided == 1);
+    CHECK(plan.strict.maneuvers == 0);
+    CHECK(plan.strict.wrong_branch == 1);  // the anti-rule's episode, dropped at the wrong branch
+    CHECK(gw::plan_to_json(plan)["guide"] == "rule");
+    const gw::EpisodeTrace a = replay(plan, target, 3);
+    CHECK(gw::procedure_outcome(a) == "success");
+    REQUIRE(a.time_s.size() == plan.actions.size() + 1);
+    CHECK(a.tip.back() == plan.tip_end);
+  }
+  CHECK(begun == 2);
+  gw::PlanOptions none;
+  none.successes = 1;
+  none.strict_only = true;
+  const gw::ProcedurePlan searched = gw::plan_procedure(y_task(), 0, 1, 3, none);
+  CHECK(searched.guide.empty());
+  CHECK(searched.strict.guided == 0);
 }

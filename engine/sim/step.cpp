@@ -292,10 +292,11 @@ StepReport substep(const WireModel& model, const VesselScene* scene, const Contr
   if (!free_motion(model, state, push, rotate, dt, ws, rep, clock))
     return fail(state, rep, "the implicit system is not positive definite (degenerate wire geometry)");
   std::fill(state.contact_force.begin(), state.contact_force.end(), Eigen::Vector3d::Zero());
+  const bool long_substep = dt > model.h * (1 + 1e-9);  // adaptive stepping: longer than the contact sub-step
   if (scene && rep.free_nodes > 0) {
     if (const std::string problem = detect(model, *scene, state, push, dt, ws, rep, clock); !problem.empty())
       return fail(state, rep, problem);
-    if (may_split && !ws.contacts.empty() && dt > model.h * (1 + 1e-9)) {  // contacts are solved at model.h
+    if (may_split && !ws.contacts.empty() && long_substep) {  // contacts are solved at model.h
       split = true;
       return rep;
     }
@@ -306,7 +307,7 @@ StepReport substep(const WireModel& model, const VesselScene* scene, const Contr
     return rep;
   }
   state.last_substep_in_contact = rep.contacts > 0;
-  rep.long_substeps = dt > model.h * (1 + 1e-9) ? 1 : 0;
+  rep.long_substeps = long_substep ? 1 : 0;
   const double kinetic = integrate(model, state, push, rotate, dt, ws);
   rep.energy = ws.sys.elastic_energy + kinetic;
   if (const std::string problem = divergence(model, scene, state, ws, rep); !problem.empty())

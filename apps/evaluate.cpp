@@ -81,7 +81,7 @@ struct EvaluateArgs {
   gw::TaskOptions task;
   gw::ProcedureOptions procedure;  // --reshape-tip, --reshape-tip-length, --step-time-limit
   std::string out_dir = "results", rows_filter, centerlines = "extract", episodes_range;
-  std::string controllers = "policy,push-only,scripted-omega,scripted-omega-ccw";
+  std::string controllers = "policy,push-only,scripted-omega,scripted-omega-ccw", planned_seeds = "0";
   std::vector<std::string> from_json;
   bool resume = false, plan = false;
   EvaluateArgs() {
@@ -117,10 +117,10 @@ void add_evaluate_options(CLI::App& app, EvaluateArgs& a) {
                  "probe targets no controller reached with 8 rotation schedules from this many seeds (0 = skip)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--planned-seeds", a.o.planned_seeds,
+  app.add_option("--planned-seeds", a.planned_seeds,
                  "plan every target of each row with the procedure planner from up to this many seeds (docs/planning.md; "
-                 "0 = skip, the default): the row's \"planned\" figure")
-      ->check(CLI::NonNegativeNumber);
+                 "0 = skip, the default): the row's \"planned\" figure; 'episodes': plan every episode of the row "
+                 "from its own start instead, and each column against those plans");
   app.add_option("--plan-budget", a.o.plan.max_env_steps, "with --planned-seeds: env steps one plan's search may simulate")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
@@ -183,6 +183,21 @@ void parse_episode_range(const std::string& text, gw::EvaluationOptions& o) {
     throw std::invalid_argument("--episodes FIRST:COUNT needs FIRST >= 0 and COUNT >= 1, got '" + text + "'");
 }
 
+// --planned-seeds N (a whole number >= 0) or 'episodes' into o.planned_seeds, o.planned_per_episode; throws
+// naming the flag.
+void parse_planned_seeds(const std::string& text, gw::EvaluationOptions& o) {
+  o.planned_per_episode = text == "episodes";
+  if (o.planned_per_episode) return;
+  std::size_t used = 0;
+  try {
+    o.planned_seeds = std::stoi(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (text.empty() || used != text.size() || o.planned_seeds < 0)
+    throw std::invalid_argument("--planned-seeds must be a whole number >= 0 or 'episodes', got '" + text + "'");
+}
+
 // The evaluation options the flags give, checked.
 gw::EvaluationOptions evaluation_options(const EvaluateArgs& a) {
   gw::EvaluationOptions o = a.o;
@@ -191,6 +206,7 @@ gw::EvaluationOptions evaluation_options(const EvaluateArgs& a) {
   o.reshape_tip_length_mm = a.procedure.reshape_tip_length_mm;
   o.step_time_limit_s = a.procedure.step_time_limit_s;
   if (!a.episodes_range.empty()) parse_episode_range(a.episodes_range, o);
+  parse_planned_seeds(a.planned_seeds, o);
   if (a.centerlines != "extract" && a.centerlines != "truth")
     throw std::invalid_argument("--centerlines must be 'extract' or 'truth', got '" + a.centerlines + "'");
   o.extract_centerlines = a.centerlines == "extract";

@@ -9,6 +9,7 @@
 
 #include "lib/runner/episode_batch.hpp"
 #include "lib/runner/evaluation_table.hpp"
+#include "lib/runner/row_planned.hpp"
 
 namespace gw {
 namespace {
@@ -69,6 +70,21 @@ nlohmann::json merge_reachability(const std::vector<const nlohmann::json*>& rows
   return out;
 }
 
+// The row's "planned" figure over its runs: per episode (each shard planned its own episodes) joined and read
+// against the merged columns; per target (every run plans every target) the first run's; absent when a run lacks it.
+std::optional<nlohmann::json> merge_planned(const std::vector<const nlohmann::json*>& rows,
+                                            const nlohmann::json& results) {
+  std::vector<const nlohmann::json*> parts;
+  for (const nlohmann::json* r : rows) {
+    if (!r->contains("planned")) return std::nullopt;
+    parts.push_back(&r->at("planned"));
+  }
+  if (!parts[0]->contains("per_episode")) return *parts[0];
+  nlohmann::json joined = join_episodes_planned(parts);
+  joined["columns"] = planned_against_columns(joined, results);
+  return joined;
+}
+
 using RunName = std::function<std::string(std::size_t)>;
 
 // The columns of one row over its runs; refuses a column one run lacks and an episode two runs share.
@@ -116,6 +132,7 @@ nlohmann::json merge_row(const std::vector<const nlohmann::json*>& parts, const 
     if (r->contains("skipped")) skipped.insert(r->at("skipped").get<std::string>());
   }
   merged.erase("ceiling");
+  merged.erase("planned");
   if (!skipped.empty()) {  // a row skipped in one run has no episodes there to pair
     std::string why;
     for (const std::string& s : skipped) why += (why.empty() ? "" : "; ") + s;
@@ -127,6 +144,7 @@ nlohmann::json merge_row(const std::vector<const nlohmann::json*>& parts, const 
   merged["results"] = merge_columns(parts, row, name_of);
   merged["reachability"] = merge_reachability(parts, merged["results"]);
   if (std::optional<nlohmann::json> ceiling = merge_ceilings(parts)) merged["ceiling"] = *ceiling;
+  if (std::optional<nlohmann::json> planned = merge_planned(parts, merged["results"])) merged["planned"] = *planned;
   return merged;
 }
 

@@ -213,8 +213,10 @@ nlohmann::json evaluation_settings(const EvaluationOptions& o) {
   if (o.task.observation.junctions != JunctionModel::kSeparate)
     settings["junctions"] = junction_model_name(o.task.observation.junctions);
   if (o.step_time_limit_s > 0) settings["step_time_limit_s"] = o.step_time_limit_s;
-  if (o.planned_seeds > 0)
-    settings["planned"] = {{"seeds", o.planned_seeds}, {"force_limit_N", o.plan.force_limit_N},
+  if (o.planned_seeds > 0 || o.planned_per_episode)
+    settings["planned"] = {{"seeds", o.planned_per_episode ? nlohmann::json("episodes")
+                                                           : nlohmann::json(o.planned_seeds)},
+                           {"force_limit_N", o.plan.force_limit_N},
                            {"budget_env_steps", o.plan.max_env_steps}};
   if (o.reshape_tip_per_mm > 0) settings["reshape_tip_per_mm"] = o.reshape_tip_per_mm;
   if (o.reshape_tip_length_mm > 0) settings["reshape_tip_length_mm"] = o.reshape_tip_length_mm;
@@ -372,9 +374,15 @@ void run_row_columns(const EvaluationRow& row, const std::string& policy, const 
   }
   r["reachability"] = row_reachability(default_task, r["results"], o.reachability_seeds, o.threads);
   if (o.reachability_seeds > 0) r["ceiling"] = row_ceiling(default_task, r["results"], o.threads);
-  if (o.planned_seeds > 0)  // the planner in its own task: act/2, control everywhere (plan/planning_task.hpp)
-    r["planned"] = row_planned(make_navigation_task(planning_task_config(base_config), wire, anatomies),
-                               o.planned_seeds, o.seed, o.plan, o.policy, o.threads);
+  if (o.planned_seeds <= 0 && !o.planned_per_episode) return;
+  // The planner in its own task: act/2, control everywhere (plan/planning_task.hpp).
+  const NavigationTask planning_task = make_navigation_task(planning_task_config(base_config), wire, anatomies);
+  if (!o.planned_per_episode) {
+    r["planned"] = row_planned(planning_task, o.planned_seeds, o.seed, o.plan, o.policy, o.threads);
+    return;
+  }
+  r["planned"] = episodes_planned(planning_task, requests, o.plan, o.policy, o.threads);
+  r["planned"]["columns"] = planned_against_columns(r["planned"], r["results"]);
 }
 
 // One row run here: its record with its columns (or "skipped" with the reason) and its wall time; progress
@@ -761,31 +769,64 @@ std::string safety_and_recovery_table(const nlohmann::json& e) {
 
 }  // namespace
 
+namespace {
+
+// A per-target "planned" figure's row of the markdown table (its header first, when `md` is empty).
+void planned_targets_markdown(const nlohmann::json& r, std::ostringstream& md) {
+  const nlohmann::json& p = r["planned"];
+  if (md.tellp() == 0)
+    md << "\n## Planned (the procedure planner, docs/planning.md)\n\nEvery target of the row planned (push, pull, "
+          "rotate; tip force within " << p["force_limit_N"].get<double>() << " N), from up to "
+       << p["seeds"].get<int>() << " seed(s) each, a search budget of " << p["budget_env_steps"].get<long>()
+       << " env steps.\n\n| case | targets | planned | strict | not found (target: the tip's nearest approach to it, mm) | "
+          "median planning time, s |\n|---|---|---|---|---|---|\n";
+  std::string missed;
+  for (const nlohmann::json& t : p["per_target"])
+    if (t["found"] == "none") {
+      std::ostringstream one;
+      one << (missed.empty() ? "" : ", ") << target_key(t["anatomy"].get<std::string>(), t["target"].get<int>())
+          << ": " << std::fixed << std::setprecision(1) << t["tip_to_target_mm"].get<double>();
+      missed += one.str();
+    }
+  md << "| " << r["name"].get<std::string>() << " | " << p["targets"].get<int>() << " | " << p["planned"].get<int>()
+     << " | " << p["strict"].get<int>() << " | " << (missed.empty() ? "—" : missed) << " | " << std::fixed
+     << std::setprecision(1) << p["median_seconds"].get<double>() << " |\n";
+}
+
+// A per-episode "planned" figure's row: the plans from the episodes' starts, and each column against them.
+void planned_episodes_markdown(const nlohmann::json& r, std::ostringstream& md) {
+  const nlohmann::json& p = r["planned"];
+  if (md.tellp() == 0)
+    md << "\n## Planned from every episode's start (the procedure planner, docs/planning.md)\n\nEvery episode of the "
+          "row planned from its own start (push, pull, rotate; tip force within " << p["force_limit_N"].get<double>()
+       << " N; a search budget of " << p["budget_env_steps"].get<long>() << " env steps); each column: its "
+          "episodes reached / the episodes it missed that a plan reaches from the same start.\n\n| case | episodes | "
+          "planned | strict | unreachable | columns: reached, missed but planned | median planning time, s |\n"
+          "|---|---|---|---|---|---|---|\n";
+  std::string columns;
+  const nlohmann::json against = p.value("columns", nlohmann::json::object());
+  for (const auto& [name, c] : against.items())
+    columns += (columns.empty() ? "" : "; ") + name + " " + std::to_string(c["reached"].get<int>()) + ", " +
+               std::to_string(c["planned_not_reached"].get<int>());
+  md << "| " << r["name"].get<std::string>() << " | " << p["episodes"].get<int>() << " | "
+     << p["planned"].get<int>() << " | " << p["strict"].get<int>() << " | " << p["unreachable"].get<int>() << " | "
+     << (columns.empty() ? "—" : columns) << " | " << std::fixed << std::setprecision(1)
+     << p["median_seconds"].get<double>() << " |\n";
+}
+
+}  // namespace
+
 // The rows' "planned" figures (evaluate --planned-seeds), when any row has one: "" otherwise.
 std::string planned_markdown(const nlohmann::json& e) {
-  std::ostringstream md;
+  std::ostringstream per_target, per_episode;
   for (const nlohmann::json& r : e["rows"]) {
     if (!r.contains("planned")) continue;
-    const nlohmann::json& p = r["planned"];
-    if (md.tellp() == 0)
-      md << "\n## Planned (the procedure planner, docs/planning.md)\n\nEvery target of the row planned (push, pull, "
-            "rotate; tip force within " << p["force_limit_N"].get<double>() << " N), from up to "
-         << p["seeds"].get<int>() << " seed(s) each, a search budget of " << p["budget_env_steps"].get<long>()
-         << " env steps.\n\n| case | targets | planned | strict | not found (target: the tip's nearest approach to it, mm) | "
-            "median planning time, s |\n|---|---|---|---|---|---|\n";
-    std::string missed;
-    for (const nlohmann::json& t : p["per_target"])
-      if (t["found"] == "none") {
-        std::ostringstream one;
-        one << (missed.empty() ? "" : ", ") << target_key(t["anatomy"].get<std::string>(), t["target"].get<int>())
-            << ": " << std::fixed << std::setprecision(1) << t["tip_to_target_mm"].get<double>();
-        missed += one.str();
-      }
-    md << "| " << r["name"].get<std::string>() << " | " << p["targets"].get<int>() << " | " << p["planned"].get<int>()
-       << " | " << p["strict"].get<int>() << " | " << (missed.empty() ? "—" : missed) << " | " << std::fixed
-       << std::setprecision(1) << p["median_seconds"].get<double>() << " |\n";
+    if (r["planned"].contains("per_episode"))
+      planned_episodes_markdown(r, per_episode);
+    else
+      planned_targets_markdown(r, per_target);
   }
-  return md.str();
+  return per_target.str() + per_episode.str();
 }
 
 std::string evaluation_to_markdown(const nlohmann::json& e) {

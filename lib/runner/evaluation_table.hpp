@@ -62,6 +62,9 @@ struct EvaluationOptions {
   // Every target of a row planned with the procedure planner (row_planned.hpp) from up to this many seeds, under
   // `plan` (its force budget and search budget); the row's "planned" figure. 0 = do not plan (the default).
   int planned_seeds = 0;
+  // Instead: every episode of the row planned from its own start (episodes_planned), and each column's episodes
+  // against those plans ("planned": {..., "columns": planned_against_columns}); planned_seeds is then unused.
+  bool planned_per_episode = false;
   PlanOptions plan;
   // The task (evaluate's --task and task flags, lib/runner/task_options.hpp). The controllers' columns run it as
   // it is, each with its actor's layouts (Controller::adapt); the episodes' draw and the reachability probes run it

@@ -125,6 +125,57 @@ TEST_CASE("plan: a row's planned figure covers every target of its anatomies", "
   }
 }
 
+TEST_CASE("plan: a row's episodes are planned each from its own start, and the columns read against them",
+          "[plan]") {
+  gw::PlanOptions o;
+  o.successes = 1;
+  const std::vector<gw::EpisodeRequest> episodes = {{0, 2, 5}, {0, 1, 7}, {0, 2, 9}};
+  const nlohmann::json p = gw::episodes_planned(y_task(), episodes, o, "", 2);
+  CHECK(p["episodes"] == 3);
+  CHECK(p["planned"] == 3);
+  REQUIRE(p["per_episode"].size() == 3);
+  for (std::size_t k = 0; k < episodes.size(); ++k) {  // in the episodes' order, each from its own seed only
+    CHECK(p["per_episode"][k]["target"] == episodes[k].target_id);
+    CHECK(p["per_episode"][k]["seed"] == episodes[k].seed);
+    CHECK(p["per_episode"][k]["peak_tip_force_N"].get<double>() <= o.force_limit_N);
+  }
+  CHECK_FALSE(p.contains("per_target"));
+  // The same start planned alone gives the same plan (threads do not share anything that changes it).
+  const gw::ProcedurePlan alone = gw::plan_procedure(y_task(), 0, 1, 7, o);
+  CHECK(p["per_episode"][1]["procedure_time_s"] == alone.time_s);
+
+  // Shards of the row joined (evaluate --from-json): their episodes in order, the counts over all of them.
+  nlohmann::json first = p, second = p;
+  first["per_episode"].erase(2);
+  second["per_episode"].erase(0);
+  second["per_episode"].erase(0);
+  second["per_episode"][0]["found"] = "none";
+  second["per_episode"][0]["why"] = "unreachable: the lumen narrows";
+  const nlohmann::json joined = gw::join_episodes_planned({&first, &second});
+  CHECK(joined["episodes"] == 3);
+  CHECK(joined["planned"] == 2);
+  CHECK(joined["unreachable"] == 1);
+  CHECK(joined["per_episode"][1] == p["per_episode"][1]);
+  CHECK(joined["per_episode"][2]["seed"] == 9);
+
+  // A column's episodes matched to the plans by anatomy, target and seed; an episode not planned is not counted.
+  nlohmann::json planned = p;
+  planned["per_episode"][2]["found"] = "none";
+  auto episode = [](int target, int seed, const std::string& outcome) {
+    return nlohmann::json{{"anatomy", "t1"}, {"target", target}, {"seed", seed}, {"outcome", outcome}};
+  };
+  const nlohmann::json results = {
+      {"sac-policy", {{"results", {episode(2, 5, "success"), episode(1, 7, "wrong_branch"), episode(2, 9, "success"),
+                                   episode(1, 11, "success")}}}}};
+  const nlohmann::json c = gw::planned_against_columns(planned, results)["sac-policy"];
+  CHECK(c["episodes"] == 3);
+  CHECK(c["reached"] == 2);
+  CHECK(c["planned"] == 2);
+  CHECK(c["reached_and_planned"] == 1);
+  CHECK(c["planned_not_reached"] == 1);  // seed 7: a plan exists, the controller entered the wrong branch
+  CHECK(c["reached_not_planned"] == 1);  // seed 9: the controller reached what the planner did not
+}
+
 TEST_CASE("plan: the narrowest passage of a course is found where the lumen is narrower than the wire", "[plan]") {
   gw::CenterlineGraph g;  // one straight branch along z, 0.5 mm point spacing, 40 mm
   g.branches.push_back({0, -1, {}, {}});

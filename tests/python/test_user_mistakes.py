@@ -67,6 +67,9 @@ def test_the_other_apps(tmp_path):
     assert "--inlet" in error_line(run([app("centerline"), "--anatomy", T1, "--inlet", "nan,0,0"]))
     assert "--rows" in error_line(run([app("evaluate"), "--rows", "no-such-row", "--plan"]))
     assert "--from-json" in error_line(run([app("evaluate"), "--from-json", "/nonexistent/results.json"]))
+    for planned in ("some", "-1", "2x"):  # a number of seeds or 'episodes'
+        line = error_line(run([app("evaluate"), "--rows", "coronary-like", "--planned-seeds", planned, "--plan"]))
+        assert "--planned-seeds" in line and planned in line, line
     # a missing or broken actor is refused before any row runs (was: every row "skipped", exit 0)
     (tmp_path / "actor.json").write_text("[1, 2, 3]")
     for actor in ("/nonexistent/actor.json", str(tmp_path / "actor.json")):

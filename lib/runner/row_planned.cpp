@@ -71,27 +71,34 @@ nlohmann::json start_json(const NavigationTask& task, const PlannedStart& t) {
   return j;
 }
 
-// The figure over `starts`: counts, budgets, median time and one entry per start under `list`.
-nlohmann::json starts_json(const NavigationTask& task, const std::vector<PlannedStart>& starts,
-                           const PlanOptions& options, const std::string& count, const std::string& list) {
-  nlohmann::json entries = nlohmann::json::array();
+// A figure's counts and median planning time, from its entries under `list` (start_json's), into `figure`: how many
+// (under `count`), planned, strict, unreachable (none found because the course narrows below the wire: the
+// ProcedurePlan::why that says so). One rule for a figure planned here and for shards joined from their JSON.
+void count_entries(nlohmann::json& figure, const std::string& count, const std::string& list) {
   int planned = 0, strict = 0, unreachable = 0;
   std::vector<double> seconds;
-  for (const PlannedStart& t : starts) {
-    planned += t.plan.kind != PlanKind::kNone;
-    strict += t.plan.kind == PlanKind::kStrict;
-    unreachable += t.plan.narrow.has_value();
-    seconds.push_back(t.plan.strict.seconds + t.plan.procedure.seconds);
-    entries.push_back(start_json(task, t));
+  for (const nlohmann::json& e : figure.at(list)) {
+    planned += e["found"] != "none";
+    strict += e["found"] == "strict";
+    unreachable += e.value("why", "").rfind("unreachable:", 0) == 0;
+    seconds.push_back(e["seconds"].get<double>());
   }
-  return {{count, starts.size()},
-          {"planned", planned},
-          {"strict", strict},
-          {"unreachable", unreachable},
-          {"force_limit_N", options.force_limit_N},
-          {"budget_env_steps", options.max_env_steps},
-          {"median_seconds", seconds.empty() ? 0.0 : median(seconds)},
-          {list, entries}};
+  figure[count] = figure[list].size();
+  figure["planned"] = planned;
+  figure["strict"] = strict;
+  figure["unreachable"] = unreachable;
+  figure["median_seconds"] = seconds.empty() ? 0.0 : median(seconds);
+}
+
+// The figure over `starts`: one entry per start under `list`, the budgets, and count_entries's counts.
+nlohmann::json starts_json(const NavigationTask& task, const std::vector<PlannedStart>& starts,
+                           const PlanOptions& options, const std::string& count, const std::string& list) {
+  nlohmann::json figure = {{"force_limit_N", options.force_limit_N},
+                           {"budget_env_steps", options.max_env_steps},
+                           {list, nlohmann::json::array()}};
+  for (const PlannedStart& t : starts) figure[list].push_back(start_json(task, t));
+  count_entries(figure, count, list);
+  return figure;
 }
 
 }  // namespace
@@ -134,21 +141,9 @@ nlohmann::json join_episodes_planned(const std::vector<const nlohmann::json*>& p
   nlohmann::json joined = *parts[0];
   joined.erase("columns");
   joined["per_episode"] = nlohmann::json::array();
-  int planned = 0, strict = 0, unreachable = 0;
-  std::vector<double> seconds;
   for (const nlohmann::json* p : parts)
-    for (const nlohmann::json& e : p->at("per_episode")) {
-      planned += e["found"] != "none";
-      strict += e["found"] == "strict";
-      unreachable += e.value("why", "").rfind("unreachable:", 0) == 0;
-      seconds.push_back(e["seconds"].get<double>());
-      joined["per_episode"].push_back(e);
-    }
-  joined["episodes"] = joined["per_episode"].size();
-  joined["planned"] = planned;
-  joined["strict"] = strict;
-  joined["unreachable"] = unreachable;
-  joined["median_seconds"] = seconds.empty() ? 0.0 : median(seconds);
+    for (const nlohmann::json& e : p->at("per_episode")) joined["per_episode"].push_back(e);
+  count_entries(joined, "episodes", "per_episode");
   return joined;
 }
 

@@ -24,6 +24,9 @@
 # DISTRIBUTION=full trains on issue 64's whole distribution instead (a run of its own, runs/generalist_full): 200
 # anatomies of seed 2, three coronary trees to one aortic arch, every anatomy with its own drawn tip and friction,
 # every coronary tree beating at its own 0-120 bpm, each arch with the aortic wire (docs/anatomy_pool.md).
+# WRONG_BRANCH_STARTS=F starts that share of the training episodes with the tip just inside a wrong child
+# (gw-train --wrong-branch-starts, training/guidewire_nav/wrong_branch_start.py), so that leaving one is learnt: the
+# fifth version, on trial (results/generalist/README.md "Wrong-branch starts"); give it its own OUT.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 MINUTES=${MINUTES:-65}
@@ -43,5 +46,5 @@ if [ -f "$OUT/settings.json" ]; then resume=(--resume); fi  # a run already star
   --init-actor policy/trained/sac_actor.json --init-log-std=-2.3,0.5 --actor-freeze-steps 10000 --learning-starts 300 \
   --anchor-weight 10,1 --buffer-size 200000 --gamma 0.995 --ent-coef auto_0.02 \
   --train-freq 4 --gradient-steps 2 --total-steps 400000 --envs 2 --eval-episodes 0 --checkpoint-every 10000 \
-  --step-cutoff 1 --no-progress --torch-threads 1 \
+  --step-cutoff 1 --no-progress --torch-threads 1 --wrong-branch-starts "${WRONG_BRANCH_STARTS:-0}" \
   --max-minutes "$MINUTES" --seed 1 --out "$OUT" "${resume[@]}"

@@ -63,6 +63,10 @@ class Settings:
                                   "states) to the actor loss, tying it to the actor it started from; one W for every "
                                   "action, or one per action (act/2: rotation,insertion; '10,0' holds the aim and "
                                   "leaves the speed free)")
+    wrong_branch_starts: float = arg(0.0, "share of training episodes that start with the tip just inside a wrong "
+                                          "child (wrong_branch_start.py: the scripted rule mirrored leads it in), so "
+                                          "that leaving a wrong branch is learnt; needs obs/5 or obs/8, act/2 and a "
+                                          "task with recovery_attempts > 0")
     total_steps: int = arg(150_000, "environment steps over all workers")
     envs: int = arg(2, "parallel servers (SubprocVecEnv); 1 = in-process DummyVecEnv")
     seed: int = arg(0, "seed of numpy, torch, SAC and the environments' episodes")
@@ -218,6 +222,10 @@ def make_env_fn(s: Settings, rank: int, eval_env: bool = False, ray_server=None,
         else:
             env = RestartingEnv(lambda: GuidewireEnv(anatomies=s.anatomies, server_args=server_args(s)),
                                 name=f"server {rank}")
+        if s.wrong_branch_starts > 0 and not eval_env:
+            from guidewire_nav.wrong_branch_start import WrongBranchStart
+
+            env = WrongBranchStart(env, s.wrong_branch_starts)
         env.reset(seed=s.seed + 1000 * rank + (10**6 if eval_env else 0) + 10**7 * seed_offset)
         return env  # episode statistics come from VecMonitor over all workers
 
@@ -247,14 +255,20 @@ def evaluate(model, env, episodes: int, seed: int) -> dict:
             "mean_return": float(np.mean(returns)), "outcomes": outcomes}
 
 
-def anchor_loss(actor, reference, obs, weights=None):
+def anchor_loss(actor, reference, obs, weights=None, free_index=None):
     """Mean squared distance between two SB3 actors' deterministic (tanh-squashed) actions on `obs`, each action's
     square times its weight (`weights`: one per action; None = 1 each). Measured on actions, not on the pre-tanh
-    means, so a saturated action may keep any mean beyond it: only a change of behaviour costs."""
+    means, so a saturated action may keep any mean beyond it: only a change of behaviour costs. `free_index`: the
+    observation entry of the wrong-branch flag (None: none): states with it raised are not held, as the starting
+    actor never acted there (a rotation actor's strict episodes end at a wrong child) and what it would do there is
+    no behaviour to keep (since 2026-12-07; the runs before held every state)."""
     squares = (actor(obs, deterministic=True) - reference(obs, deterministic=True)) ** 2
     if weights is not None:
         squares = squares * weights
-    return squares.sum(dim=-1).mean()
+    per_state = squares.sum(dim=-1)
+    if free_index is not None:
+        per_state = per_state * (obs[:, free_index] < 0.5)
+    return per_state.mean()
 
 
 def per_action(flag: str, text: str, action_size: int, minimum: float | None = None) -> list[float]:
@@ -392,11 +406,13 @@ class ActorUpdates(BaseCallback):
     replayed batch back towards ``reference`` (the starting actor; None = no anchor). SB3's SAC.train()
     calls zero_grad, actor_loss.backward, step; the anchor's gradient is added in between, in step."""
 
-    def __init__(self, freeze_steps: int, reference=None, anchor_weights=None, batch_size: int = 256):
+    def __init__(self, freeze_steps: int, reference=None, anchor_weights=None, batch_size: int = 256,
+                 free_index=None):
         super().__init__()
         self.freeze_steps = freeze_steps
         self.reference = reference
         self.anchor_weights = anchor_weights  # a tensor, one weight per action
+        self.free_index = free_index  # the wrong-branch flag's entry: states the anchor leaves free (anchor_loss)
         self.batch_size = batch_size
         self.frozen = freeze_steps > 0
 
@@ -408,7 +424,7 @@ class ActorUpdates(BaseCallback):
                 return None
             if self.reference is not None:
                 obs = self.model.replay_buffer.sample(self.batch_size).observations
-                loss = anchor_loss(self.model.actor, self.reference, obs, self.anchor_weights)
+                loss = anchor_loss(self.model.actor, self.reference, obs, self.anchor_weights, self.free_index)
                 loss.backward()
                 self.logger.record("train/anchor_loss", loss.item())
             return type(actor_opt).step(actor_opt, *args, **kwargs)
@@ -665,7 +681,9 @@ def learn(s: Settings, out: Path, model, reference, eval_env, resume_from) -> tu
     evals: list[dict] = []
     start = time.time()
     eval_cb = EvalCallback(s, eval_env, out, evals, start)
-    callbacks = CallbackList([ActorUpdates(s.actor_freeze_steps, reference, weights, s.batch_size), eval_cb,
+    names = list(getattr(eval_env.unwrapped, "observation_names", []))
+    free_index = names.index("wrong_branch") if "wrong_branch" in names else None
+    callbacks = CallbackList([ActorUpdates(s.actor_freeze_steps, reference, weights, s.batch_size, free_index), eval_cb,
                               CheckpointCallback(max(1, s.checkpoint_every // s.envs), str(out / "checkpoints"),
                                                  name_prefix="sac", save_replay_buffer=True)])
 

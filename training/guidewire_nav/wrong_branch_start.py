@@ -1,0 +1,86 @@
+"""Wrong-branch starts: a training curriculum for leaving a wrong branch (issue 64).
+
+A controller that never enters a wrong branch in training never learns to pull out of one: under the generalist's
+task (act/2, recovery 3) an episode goes on after the tip enters a wrong child, but the rotation actor the run starts
+from aims well, so those states are rare (5-11% of episodes) and the learnt actor "pulls out but does not get in"
+(results/generalist/README.md). This wrapper starts a share of the training episodes with the tip just inside a wrong
+child, so the learner meets that state as often as it is asked to.
+
+    env = WrongBranchStart(env, fraction=0.3)
+
+In:  an env whose observation has "omega" and "wrong_branch" (obs/5, obs/8: the push/pull layouts) and whose action
+     is [rotation, insertion] (act/2); `fraction` of resets in [0, 1].
+Out: on reset, with probability `fraction` (the wrapper's own generator, seeded by the first seeded reset, so a
+     seeded run stays seeded), the episode is first driven by the scripted rule mirrored (turn until the tip bends
+     towards the wrong child, omega >= 0.95, then hold; push at full speed) until the wrong-branch flag rises, then
+     pushed on 0-25 env steps (drawn; up to 10 mm) while the tip stays in the wrong child; that observation is the
+     reset's, with info["wrong_branch_start"] = True and info["lead_in_steps"]. An episode whose
+     lead-in ends without entering a wrong child (a path without a fork, a tip that went the right way anyway) is
+     dropped and an ordinary reset follows. The lead-in's steps are the server's, not the learner's: they are not
+     transitions, and they count against the episode's step limit as any step does.
+"""
+
+from __future__ import annotations
+
+import gymnasium as gym
+import numpy as np
+
+from guidewire_nav.baselines import SCRIPTED_OMEGA_RELEASE, scripted_omega_action
+
+
+class WrongBranchStart(gym.Wrapper):
+    DEEPER_STEPS = 25  # at most this many env steps pushed past the entry (0.4 mm each under the default push)
+
+    def __init__(self, env: gym.Env, fraction: float):
+        super().__init__(env)
+        if not 0.0 <= fraction <= 1.0:
+            raise ValueError(f"wrong-branch start fraction must be within [0, 1], got {fraction}")
+        names = list(getattr(env, "observation_names", []))
+        missing = [n for n in ("omega", "wrong_branch") if n not in names]
+        if missing or env.action_space.shape != (2,):
+            raise ValueError("wrong-branch starts need an observation with omega and wrong_branch (obs/5, obs/8) and "
+                             f"the act/2 action; this env has observations {names} and action shape "
+                             f"{env.action_space.shape}")
+        task = getattr(env, "spec_reply", {}).get("task", {})
+        if fraction > 0.0 and task.get("recovery_attempts", 1) == 0:
+            raise ValueError("wrong-branch starts need a task whose episodes go on after a wrong child "
+                             "(recovery_attempts > 0, e.g. training/tasks/generalist.json); this task ends them there")
+        self.fraction = fraction
+        self.observation_names = names
+        self.omega_index = names.index("omega")
+        self.flag_index = names.index("wrong_branch")
+        self.rng = np.random.default_rng(0)
+        self.started_in_wrong_branch = 0  # lead-ins that entered a wrong child
+        self.lead_ins_dropped = 0         # lead-ins that ended first
+
+    def reset(self, *, seed=None, options=None):
+        if seed is not None:
+            self.rng = np.random.default_rng(seed)
+        obs, info = self.env.reset(seed=seed, options=options)
+        if self.fraction <= 0.0 or self.rng.random() >= self.fraction:
+            return obs, info
+        for steps in range(1, 100_000):
+            # the mirrored rule: -omega crosses the rule's release where omega reaches -release (0.95)
+            rotation = scripted_omega_action(-float(obs[self.omega_index]), SCRIPTED_OMEGA_RELEASE)
+            obs, _, terminated, truncated, step_info = self.env.step(np.array([rotation, 1.0], dtype=np.float32))
+            if terminated or truncated:
+                self.lead_ins_dropped += 1
+                return self.env.reset(options=options)
+            if obs[self.flag_index] > 0.5:
+                return self._deeper(obs, info, steps)
+        raise RuntimeError("wrong-branch lead-in: the episode never ended")
+
+    def _deeper(self, obs, info, steps):
+        """Pushes on 0..DEEPER_STEPS env steps (drawn) past the entry, the rotation held, so that the learner meets
+        the tip anywhere in the first ~10 mm of the wrong child, not only on its threshold (one pulled step undoes
+        an entry). Stops early where the tip leaves the wrong child or the episode ends (then it is dropped)."""
+        for _ in range(int(self.rng.integers(0, self.DEEPER_STEPS + 1))):
+            deeper, _, terminated, truncated, _ = self.env.step(np.array([0.0, 1.0], dtype=np.float32))
+            if terminated or truncated:
+                self.lead_ins_dropped += 1
+                return self.env.reset()
+            if deeper[self.flag_index] < 0.5:
+                break
+            obs, steps = deeper, steps + 1
+        self.started_in_wrong_branch += 1
+        return obs, {**info, "wrong_branch_start": True, "lead_in_steps": steps}

@@ -26,7 +26,8 @@
 # every coronary tree beating at its own 0-120 bpm, each arch with the aortic wire (docs/anatomy_pool.md).
 # WRONG_BRANCH_STARTS=F starts that share of the training episodes with the tip just inside a wrong child
 # (gw-train --wrong-branch-starts, training/guidewire_nav/wrong_branch_start.py), so that leaving one is learnt: the
-# fifth version, on trial (results/generalist/README.md "Wrong-branch starts"); give it its own OUT.
+# fifth version, on trial (results/generalist/README.md "Wrong-branch starts"); give it its own OUT. ANCHOR=W1,W2
+# replaces the anchor's weights (rotation, insertion; default 10,1).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 MINUTES=${MINUTES:-65}
@@ -44,7 +45,7 @@ resume=()
 if [ -f "$OUT/settings.json" ]; then resume=(--resume); fi  # a run already started: go on from its last checkpoint
 .venv/bin/gw-train --anatomies "$POOL/index.json" --task training/tasks/generalist.json \
   --init-actor policy/trained/sac_actor.json --init-log-std=-2.3,0.5 --actor-freeze-steps 10000 --learning-starts 300 \
-  --anchor-weight 10,1 --buffer-size 200000 --gamma 0.995 --ent-coef auto_0.02 \
+  --anchor-weight "${ANCHOR:-10,1}" --buffer-size 200000 --gamma 0.995 --ent-coef auto_0.02 \
   --train-freq 4 --gradient-steps 2 --total-steps 400000 --envs 2 --eval-episodes 0 --checkpoint-every 10000 \
   --step-cutoff 1 --no-progress --torch-threads 1 --wrong-branch-starts "${WRONG_BRANCH_STARTS:-0}" \
   --max-minutes "$MINUTES" --seed 1 --out "$OUT" "${resume[@]}"

@@ -253,18 +253,39 @@ def test_anchor_weights_one_for_every_action_or_one_per_action():
     with pytest.raises(SystemExit, match="--init-log-std -1,0,1: give one number, or 2"):
         per_action("--init-log-std", "-1,0,1", 2)
 
-    class Fixed(torch.nn.Module):  # an actor whose deterministic action is a constant
-        def __init__(self, action):
+    obs = torch.zeros(4, 3)
+    moved, start = fixed_actor([0.5, -1.0]), fixed_actor([0.0, 1.0])
+    assert anchor_loss(moved, start, obs).item() == pytest.approx(0.25 + 4.0)
+    assert anchor_loss(moved, start, obs, torch.tensor([10.0, 0.0])).item() == pytest.approx(2.5)
+
+
+def fixed_actor(action):
+    """An actor whose deterministic action is the constant `action`."""
+    import torch
+
+    class Fixed(torch.nn.Module):
+        def __init__(self):
             super().__init__()
             self.action = torch.tensor(action)
 
         def forward(self, obs, deterministic=True):
             return self.action.expand(obs.shape[0], -1)
 
-    obs = torch.zeros(4, 3)
-    moved, start = Fixed([0.5, -1.0]), Fixed([0.0, 1.0])
-    assert anchor_loss(moved, start, obs).item() == pytest.approx(0.25 + 4.0)
-    assert anchor_loss(moved, start, obs, torch.tensor([10.0, 0.0])).item() == pytest.approx(2.5)
+    return Fixed()
+
+
+def test_the_anchor_leaves_wrong_branch_states_free():
+    """States with the wrong-branch flag raised (--wrong-branch-starts' and any recovery's) are not held to the
+    starting actor: it never acted there."""
+    import torch
+    from guidewire_nav.train import anchor_loss
+
+    obs = torch.zeros(4, 15)
+    obs[:2, 13] = 1.0  # two of four states in a wrong child
+    moved, start = fixed_actor([0.5, -1.0]), fixed_actor([0.0, 1.0])
+    assert anchor_loss(moved, start, obs).item() == pytest.approx(4.25)
+    assert anchor_loss(moved, start, obs, free_index=13).item() == pytest.approx(4.25 / 2)
+    assert anchor_loss(moved, start, obs, torch.tensor([10.0, 0.0]), 13).item() == pytest.approx(2.5 / 2)
 
 
 def test_init_actor_refuses_a_network_of_another_shape(smoke_run, tmp_path):

@@ -1,6 +1,6 @@
 """Wrong-branch starts (training/guidewire_nav/wrong_branch_start.py): a share of training episodes begins with the
-tip inside a wrong child, seeded; refused where the task or layout cannot have such a start; the anchor leaves those
-states free; gw-train runs with it."""
+tip inside a wrong child, seeded; refused where the task or layout cannot have such a start; gw-train runs with it
+(the anchor's mask: test_train_smoke.py)."""
 
 import json
 from pathlib import Path
@@ -67,26 +67,6 @@ def test_refused_without_the_flag_the_act2_action_or_recovery():
             WrongBranchStart(env, 0.5)
         with pytest.raises(ValueError, match=r"within \[0, 1\]"):
             WrongBranchStart(env, 1.5)
-
-
-def test_the_anchor_leaves_wrong_branch_states_free():
-    import torch
-    from guidewire_nav.train import anchor_loss
-
-    class Fixed(torch.nn.Module):
-        def __init__(self, action):
-            super().__init__()
-            self.action = torch.tensor(action)
-
-        def forward(self, obs, deterministic=True):
-            return self.action.expand(obs.shape[0], -1)
-
-    obs = torch.zeros(4, 15)
-    obs[:2, 13] = 1.0  # two of four states in a wrong child
-    moved, start = Fixed([0.5, -1.0]), Fixed([0.0, 1.0])
-    assert anchor_loss(moved, start, obs).item() == pytest.approx(4.25)
-    assert anchor_loss(moved, start, obs, free_index=13).item() == pytest.approx(4.25 / 2)
-    assert anchor_loss(moved, start, obs, torch.tensor([10.0, 0.0]), 13).item() == pytest.approx(2.5 / 2)
 
 
 def test_gw_train_runs_with_wrong_branch_starts(tmp_path):

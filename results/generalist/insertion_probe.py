@@ -3,7 +3,10 @@ deterministic insertion (quantiles), its log-std per action, the entropy coeffic
 near-constant push (0.96, the start's) against the actor's own insertion (mean Q difference and dQ/d insertion
 there). Written to tell whether a run that slows down does so because its critics prefer it.
 
-    python results/generalist/insertion_probe.py RUN/checkpoints/sac_90000_steps.zip [--states 5000]
+    python results/generalist/insertion_probe.py RUN/checkpoints/sac_90000_steps.zip [--states 5000] [--wrong-branch]
+
+--wrong-branch probes only the states with the wrong-branch flag raised (the tip in a wrong child: what a run with
+--wrong-branch-starts is to learn to leave).
 
 Input: an SB3 SAC checkpoint of an act/2 run (rotation, insertion) with its replay buffer beside it
 (sac_replay_buffer_N_steps.pkl). Output: one JSON object on stdout.
@@ -19,15 +22,19 @@ import torch
 from stable_baselines3 import SAC
 
 PUSH = 0.96  # tanh(2): the widened start's insertion (export_actor.PUSH_PULL_INSERTION_BIAS)
+WRONG_BRANCH = 13  # the wrong-branch flag's entry in obs/5 and obs/8 (task/observation.cpp's names)
 
 
-def probe(zip_path: Path, states: int) -> dict:
+def probe(zip_path: Path, states: int, wrong_branch: bool = False) -> dict:
     model = SAC.load(zip_path, device="cpu")
     buffer_path = zip_path.with_name(zip_path.name.replace("sac_", "sac_replay_buffer_").replace(".zip", ".pkl"))
     with open(buffer_path, "rb") as f:
         buffer = pickle.load(f)
     filled = buffer.buffer_size if buffer.full else buffer.pos
-    obs = torch.as_tensor(buffer.observations[:filled].reshape(-1, buffer.observations.shape[-1])[:states])
+    obs = buffer.observations[:filled].reshape(-1, buffer.observations.shape[-1])
+    if wrong_branch:
+        obs = obs[obs[:, WRONG_BRANCH] > 0.5]
+    obs = torch.as_tensor(obs[:states])
     with torch.no_grad():
         mean, log_std, _ = model.actor.get_action_dist_params(obs)
         own = torch.tanh(mean)
@@ -48,10 +55,11 @@ def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("checkpoint", type=Path)
     p.add_argument("--states", type=int, default=5000)
+    p.add_argument("--wrong-branch", action="store_true", help="only states with the wrong-branch flag raised")
     args = p.parse_args(argv)
     if not args.checkpoint.is_file():
         sys.exit(f"error: {args.checkpoint}: no such checkpoint")
-    json.dump(probe(args.checkpoint, args.states), sys.stdout, indent=1)
+    json.dump(probe(args.checkpoint, args.states, args.wrong_branch), sys.stdout, indent=1)
     print()
     return 0
 

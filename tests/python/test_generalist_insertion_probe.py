@@ -39,6 +39,7 @@ def test_reports_the_actors_insertion_and_the_critics_view_of_a_push(tmp_path, c
     with torch.no_grad():  # the actor's mean: rotation 0, insertion tanh(-1) = -0.76 everywhere
         model.actor.mu.weight.zero_()
         model.actor.mu.bias.copy_(torch.tensor([0.0, -1.0]))
+    model.replay_buffer.observations[:10, 0, 13] = 1.0  # ten states with the wrong-branch flag raised
     model.save(tmp_path / "sac_40_steps.zip")
     model.save_replay_buffer(tmp_path / "sac_replay_buffer_40_steps.pkl")
 
@@ -48,5 +49,7 @@ def test_reports_the_actors_insertion_and_the_critics_view_of_a_push(tmp_path, c
     assert out["states"] == 30 and out["gamma"] == pytest.approx(0.995)
     assert out["insertion_quantiles_5_25_50_75_95"] == [pytest.approx(np.tanh(-1.0), abs=1e-3)] * 5
     assert set(out) >= {"q_push_minus_q_own_mean", "dq_dinsertion_at_push_median", "log_std_mean", "ent_coef"}
+    assert probe.main([str(tmp_path / "sac_40_steps.zip"), "--wrong-branch"]) == 0  # only those ten
+    assert json.loads(capsys.readouterr().out)["states"] == 10
     with pytest.raises(SystemExit, match="no such checkpoint"):
         probe.main([str(tmp_path / "none.zip")])

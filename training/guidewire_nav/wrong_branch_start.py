@@ -62,23 +62,27 @@ class WrongBranchStart(gym.Wrapper):
         for steps in range(1, 100_000):
             # the mirrored rule: -omega crosses the rule's release where omega reaches -release (0.95)
             rotation = scripted_omega_action(-float(obs[self.omega_index]), SCRIPTED_OMEGA_RELEASE)
-            obs, _, terminated, truncated, step_info = self.env.step(np.array([rotation, 1.0], dtype=np.float32))
-            if terminated or truncated:
+            obs, _, terminated, truncated, _ = self.env.step(np.array([rotation, 1.0], dtype=np.float32))
+            started = None
+            if not (terminated or truncated):
+                if obs[self.flag_index] < 0.5:
+                    continue
+                started = self._deeper(obs, info, steps)
+            if started is None:  # the episode ended during the lead-in: dropped, an ordinary episode instead
                 self.lead_ins_dropped += 1
                 return self.env.reset(options=options)
-            if obs[self.flag_index] > 0.5:
-                return self._deeper(obs, info, steps)
+            return started
         raise RuntimeError("wrong-branch lead-in: the episode never ended")
 
     def _deeper(self, obs, info, steps):
         """Pushes on 0..DEEPER_STEPS env steps (drawn) past the entry, the rotation held, so that the learner meets
         the tip anywhere in the first ~10 mm of the wrong child, not only on its threshold (one pulled step undoes
-        an entry). Stops early where the tip leaves the wrong child or the episode ends (then it is dropped)."""
+        an entry). Stops early where the tip leaves the wrong child. Out: the reset's (obs, info), or None where the
+        episode ended meanwhile (the caller drops it)."""
         for _ in range(int(self.rng.integers(0, self.DEEPER_STEPS + 1))):
             deeper, _, terminated, truncated, _ = self.env.step(np.array([0.0, 1.0], dtype=np.float32))
             if terminated or truncated:
-                self.lead_ins_dropped += 1
-                return self.env.reset()
+                return None
             if deeper[self.flag_index] < 0.5:
                 break
             obs, steps = deeper, steps + 1

@@ -27,7 +27,8 @@
 # WRONG_BRANCH_STARTS=F starts that share of the training episodes with the tip just inside a wrong child
 # (gw-train --wrong-branch-starts, training/guidewire_nav/wrong_branch_start.py), so that leaving one is learnt: the
 # fifth version, on trial (results/generalist/README.md "Wrong-branch starts"); give it its own OUT. ANCHOR=W1,W2
-# replaces the anchor's weights (rotation, insertion; default 10,1).
+# replaces the anchor's weights (rotation, insertion; default 10,1). PULLBACK=N pulls a share of those starts back out
+# of the child, up to N env steps, the tip left aimed into it (gw-train --wrong-branch-pullback; default 0).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 MINUTES=${MINUTES:-65}
@@ -48,4 +49,5 @@ if [ -f "$OUT/settings.json" ]; then resume=(--resume); fi  # a run already star
   --anchor-weight "${ANCHOR:-10,1}" --buffer-size 200000 --gamma 0.995 --ent-coef auto_0.02 \
   --train-freq 4 --gradient-steps 2 --total-steps 400000 --envs 2 --eval-episodes 0 --checkpoint-every 10000 \
   --step-cutoff 1 --no-progress --torch-threads 1 --wrong-branch-starts "${WRONG_BRANCH_STARTS:-0}" \
+  --wrong-branch-pullback "${PULLBACK:-0}" \
   --max-minutes "$MINUTES" --seed 1 --out "$OUT" "${resume[@]}"

@@ -67,6 +67,9 @@ class Settings:
                                           "child (wrong_branch_start.py: the scripted rule mirrored leads it in), so "
                                           "that leaving a wrong branch is learnt; needs obs/5 or obs/8, act/2 and a "
                                           "task with recovery_attempts > 0")
+    wrong_branch_pullback: int = arg(0, "wrong-branch starts: pull a share of them back out of the child again, up to "
+                                        "this many env steps, so that the tip starts short of the fork aimed into "
+                                        "the wrong child (re-aiming learnt; 0: every start inside the child)")
     total_steps: int = arg(150_000, "environment steps over all workers")
     envs: int = arg(2, "parallel servers (SubprocVecEnv); 1 = in-process DummyVecEnv")
     seed: int = arg(0, "seed of numpy, torch, SAC and the environments' episodes")
@@ -133,7 +136,13 @@ def settings_parser() -> argparse.ArgumentParser:
 
 
 def parse_settings(argv=None) -> Settings:
-    return Settings(**vars(settings_parser().parse_args(argv)))
+    s = Settings(**vars(settings_parser().parse_args(argv)))
+    if s.wrong_branch_pullback < 0:
+        raise SystemExit(f"--wrong-branch-pullback {s.wrong_branch_pullback}: env steps, >= 0")
+    if s.wrong_branch_pullback and not s.wrong_branch_starts:
+        raise SystemExit("--wrong-branch-pullback: pulls wrong-branch starts back out; give --wrong-branch-starts F "
+                         "(F > 0) with it")
+    return s
 
 
 def git_commit() -> str:
@@ -225,7 +234,7 @@ def make_env_fn(s: Settings, rank: int, eval_env: bool = False, ray_server=None,
         if s.wrong_branch_starts > 0 and not eval_env:
             from guidewire_nav.wrong_branch_start import WrongBranchStart
 
-            env = WrongBranchStart(env, s.wrong_branch_starts)
+            env = WrongBranchStart(env, s.wrong_branch_starts, s.wrong_branch_pullback)
         env.reset(seed=s.seed + 1000 * rank + (10**6 if eval_env else 0) + 10**7 * seed_offset)
         return env  # episode statistics come from VecMonitor over all workers
 

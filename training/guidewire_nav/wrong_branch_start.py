@@ -6,15 +6,19 @@ from aims well, so those states are rare (5-11% of episodes) and the learnt acto
 (results/generalist/README.md). This wrapper starts a share of the training episodes with the tip just inside a wrong
 child, so the learner meets that state as often as it is asked to.
 
-    env = WrongBranchStart(env, fraction=0.3)
+    env = WrongBranchStart(env, fraction=0.3, pullback_steps=15)
 
 In:  an env whose observation has "omega" and "wrong_branch" (obs/5, obs/8: the push/pull layouts) and whose action
-     is [rotation, insertion] (act/2); `fraction` of resets in [0, 1].
+     is [rotation, insertion] (act/2); `fraction` of resets in [0, 1]; `pullback_steps` >= 0 (default 0).
 Out: on reset, with probability `fraction` (the wrapper's own generator, seeded by the first seeded reset, so a
      seeded run stays seeded), the episode is first driven by the scripted rule mirrored (turn until the tip bends
      towards the wrong child, omega >= 0.95, then hold; push at full speed) until the wrong-branch flag rises, then
-     pushed on 0-25 env steps (drawn; up to 10 mm) while the tip stays in the wrong child; that observation is the
-     reset's, with info["wrong_branch_start"] = True and info["lead_in_steps"]. An episode whose
+     moved by an offset drawn from -pullback_steps..25 env steps: pushed on that many steps (up to 10 mm) while the
+     tip stays in the wrong child, or, where the offset is negative, pulled back at full speed with the rotation held
+     until the flag falls and on to that many steps in all, so that the tip is just short of the fork and still aimed
+     into the wrong child (where re-aiming is the task: the state the fifth version's first trial left unlearnt);
+     that observation is the reset's, with info["wrong_branch_start"] = True, info["lead_in_steps"] and
+     info["offset_steps"]. An episode whose
      lead-in ends without entering a wrong child (a path without a fork, a tip that went the right way anyway) is
      dropped and an ordinary reset follows. The lead-in's steps are the server's, not the learner's: they are not
      transitions, and they count against the episode's step limit as any step does.
@@ -31,10 +35,14 @@ from guidewire_nav.baselines import SCRIPTED_OMEGA_RELEASE, scripted_omega_actio
 class WrongBranchStart(gym.Wrapper):
     DEEPER_STEPS = 25  # at most this many env steps pushed past the entry (0.4 mm each under the default push)
 
-    def __init__(self, env: gym.Env, fraction: float):
+    PULL_OUT_STEPS = 50  # a pulled-back start whose tip is still in the wrong child after this many pulls is dropped
+
+    def __init__(self, env: gym.Env, fraction: float, pullback_steps: int = 0):
         super().__init__(env)
         if not 0.0 <= fraction <= 1.0:
             raise ValueError(f"wrong-branch start fraction must be within [0, 1], got {fraction}")
+        if pullback_steps < 0:
+            raise ValueError(f"wrong-branch pull-back must be >= 0 env steps, got {pullback_steps}")
         names = list(getattr(env, "observation_names", []))
         missing = [n for n in ("omega", "wrong_branch") if n not in names]
         if missing or env.action_space.shape != (2,):
@@ -46,11 +54,12 @@ class WrongBranchStart(gym.Wrapper):
             raise ValueError("wrong-branch starts need a task whose episodes go on after a wrong child "
                              "(recovery_attempts > 0, e.g. training/tasks/generalist.json); this task ends them there")
         self.fraction = fraction
+        self.pullback_steps = int(pullback_steps)
         self.observation_names = names
         self.omega_index = names.index("omega")
         self.flag_index = names.index("wrong_branch")
         self.rng = np.random.default_rng(0)
-        self.started_in_wrong_branch = 0  # lead-ins that entered a wrong child
+        self.started_in_wrong_branch = 0  # lead-ins that entered a wrong child (and, pulled back, left it)
         self.lead_ins_dropped = 0         # lead-ins that ended first
 
     def reset(self, *, seed=None, options=None):
@@ -67,24 +76,33 @@ class WrongBranchStart(gym.Wrapper):
             if not (terminated or truncated):
                 if obs[self.flag_index] < 0.5:
                     continue
-                started = self._deeper(obs, info, steps)
+                started = self._offset(obs, info, steps)
             if started is None:  # the episode ended during the lead-in: dropped, an ordinary episode instead
                 self.lead_ins_dropped += 1
                 return self.env.reset(options=options)
             return started
         raise RuntimeError("wrong-branch lead-in: the episode never ended")
 
-    def _deeper(self, obs, info, steps):
-        """Pushes on 0..DEEPER_STEPS env steps (drawn) past the entry, the rotation held, so that the learner meets
-        the tip anywhere in the first ~10 mm of the wrong child, not only on its threshold (one pulled step undoes
-        an entry). Stops early where the tip leaves the wrong child. Out: the reset's (obs, info), or None where the
-        episode ended meanwhile (the caller drops it)."""
-        for _ in range(int(self.rng.integers(0, self.DEEPER_STEPS + 1))):
-            deeper, _, terminated, truncated, _ = self.env.step(np.array([0.0, 1.0], dtype=np.float32))
+    def _offset(self, obs, info, steps):
+        """Moves the wire by an offset drawn from -pullback_steps..DEEPER_STEPS env steps from the entry, the rotation
+        held. A push of k >= 0 steps puts the tip anywhere in the first ~10 mm of the wrong child, not only on its
+        threshold (one pulled step undoes an entry), and stops early where the tip leaves it. A pull of k > 0 steps
+        goes on until the tip is out of the wrong child (at most PULL_OUT_STEPS) and to k steps in all: the tip short
+        of the fork, aimed into the wrong child. Out: the reset's (obs, info), or None where the episode ended
+        meanwhile or a pull never took the tip out (the caller drops it)."""
+        offset = int(self.rng.integers(-self.pullback_steps, self.DEEPER_STEPS + 1))
+        for moved in range(1, (offset if offset >= 0 else max(-offset, self.PULL_OUT_STEPS)) + 1):
+            after, _, terminated, truncated, _ = self.env.step(
+                np.array([0.0, 1.0 if offset >= 0 else -1.0], dtype=np.float32))
             if terminated or truncated:
                 return None
-            if deeper[self.flag_index] < 0.5:
+            out_of_child = after[self.flag_index] < 0.5
+            if offset >= 0 and out_of_child:  # a push that left the child: the last state inside it
                 break
-            obs, steps = deeper, steps + 1
+            obs, steps = after, steps + 1
+            if offset < 0 and out_of_child and moved >= -offset:
+                break
+        if offset < 0 and obs[self.flag_index] >= 0.5:
+            return None
         self.started_in_wrong_branch += 1
-        return obs, {**info, "wrong_branch_start": True, "lead_in_steps": steps}
+        return obs, {**info, "wrong_branch_start": True, "lead_in_steps": steps, "offset_steps": offset}

@@ -91,18 +91,23 @@ class WrongBranchStart(gym.Wrapper):
         of the fork, aimed into the wrong child. Out: the reset's (obs, info), or None where the episode ended
         meanwhile or a pull never took the tip out (the caller drops it)."""
         offset = int(self.rng.integers(-self.pullback_steps, self.DEEPER_STEPS + 1))
-        for moved in range(1, (offset if offset >= 0 else max(-offset, self.PULL_OUT_STEPS)) + 1):
-            after, _, terminated, truncated, _ = self.env.step(
-                np.array([0.0, 1.0 if offset >= 0 else -1.0], dtype=np.float32))
-            if terminated or truncated:
+        if offset >= 0:
+            for _ in range(offset):
+                after, _, terminated, truncated, _ = self.env.step(np.array([0.0, 1.0], dtype=np.float32))
+                if terminated or truncated:
+                    return None
+                if after[self.flag_index] < 0.5:  # a push that left the child: the last state inside it
+                    break
+                obs, steps = after, steps + 1
+        else:
+            for moved in range(1, max(-offset, self.PULL_OUT_STEPS) + 1):
+                obs, _, terminated, truncated, _ = self.env.step(np.array([0.0, -1.0], dtype=np.float32))
+                if terminated or truncated:
+                    return None
+                steps += 1
+                if obs[self.flag_index] < 0.5 and moved >= -offset:
+                    break
+            else:  # the tip never left the wrong child
                 return None
-            out_of_child = after[self.flag_index] < 0.5
-            if offset >= 0 and out_of_child:  # a push that left the child: the last state inside it
-                break
-            obs, steps = after, steps + 1
-            if offset < 0 and out_of_child and moved >= -offset:
-                break
-        if offset < 0 and obs[self.flag_index] >= 0.5:
-            return None
         self.started_in_wrong_branch += 1
         return obs, {**info, "wrong_branch_start": True, "lead_in_steps": steps, "offset_steps": offset}

@@ -23,11 +23,12 @@ struct StallClock {
   double inserted_at_best_mm = 0.0;  // the commanded insertion (inserted + withheld) then (act/2's stall)
 };
 
-// act/2's reward pays only for going deeper than ever: the insertion commands summed (full-speed env steps pushed,
-// net) and their largest value so far.
+// act/2's reward pays only for going deeper than ever (RewardProgress): the insertion commands summed (full-speed
+// env steps pushed, net) and their largest value so far; the tip's deepest projection on the course (mm).
 struct PushPullDepth {
   double pushed_steps = 0.0;
   double deepest_pushed_steps = 0.0;
+  double deepest_progress_mm = 0.0;
 };
 
 // Force limit (TaskConfig::force_limit_N > 0; else withheld_mm stays 0): the last physics step's largest

@@ -69,6 +69,7 @@ EpisodeState reset_episode(const NavigationTask& task, int anatomy, int target_i
   s.obs[obs_index::kWrongBranch] = 0.0;
   s.obs[obs_index::kTipForce] = 0.0;
   s.stall.best_progress_mm = s.progress_mm;
+  s.depth.deepest_progress_mm = s.progress_mm;
   s.stall.inserted_at_best_mm = s.wire.inserted_length_mm;
   s.procedure.max_steps =
       s.max_steps + (c.recovery_attempts > 0 ? static_cast<int>(std::ceil(c.recovery_time_s / env_dt(c))) : 0);

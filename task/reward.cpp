@@ -30,4 +30,14 @@ double push_pull_reward(double omega, double omega_before, double lambda_ratio, 
   return aim_paid + effort_term(rotation) - (in_wrong_branch ? wrong_branch_cost : 0.0) - time_cost;
 }
 
+RewardProgress parse_reward_progress(const std::string& text) {
+  if (text == "commanded") return RewardProgress::kCommanded;
+  if (text == "course") return RewardProgress::kCourse;
+  throw std::invalid_argument("reward progress must be \"commanded\" or \"course\", got \"" + text + "\"");
+}
+
+const char* reward_progress_name(RewardProgress progress) {
+  return progress == RewardProgress::kCourse ? "course" : "commanded";
+}
+
 }  // namespace gw

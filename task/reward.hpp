@@ -9,10 +9,24 @@ namespace gw {
 // -0.65, 0.992 at -1) while a rotation step costs 0.2 |a|, so it barely pays for the fine aim
 // (omega near -1) that decides shallow branches; a shifted, steeper sigmoid (e.g. centre -0.5, slope 8)
 // keeps paying down to omega ~ -0.9. The shape is a task setting so a policy's training records it.
+// What act/2's progress term is paid for (push_pull_reward's `new_depth`; act/1 ignores it).
+enum class RewardProgress {
+  kCommanded,  // the insertion commands summed past their deepest so far: every act/2 actor before 2026-12-07
+  kCourse,     // the tip's projection on the target's course past its deepest so far, in full-speed steps of
+               // advance: a push into a wrong child or into a jam earns (almost) nothing, and after a pull-back
+               // out of a wrong child the correct child pays from its ostium on (under kCommanded only once the
+               // commands are deeper than they went into the wrong child; results/generalist/README.md)
+};
+
 struct RewardShape {
   double omega_centre = 0.1;
   double omega_slope = 5.0;
+  RewardProgress progress = RewardProgress::kCommanded;
 };
+
+// "commanded" | "course"; throws std::invalid_argument for anything else.
+RewardProgress parse_reward_progress(const std::string& text);
+const char* reward_progress_name(RewardProgress progress);
 
 // `lambda_ratio` is lambda_t / lambda_0, `action` the applied rotation action in [-1, 1].
 double navigation_reward(double omega, double lambda_ratio, double action, const RewardShape& shape = {});

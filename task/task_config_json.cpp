@@ -128,6 +128,8 @@ json task_config_to_json(const TaskConfig& c) {
   j["action"] = action_layout_name(c.action);
   j["observation"] = observation_json(c.observation);
   j["reward"] = {{"omega_centre", c.reward.omega_centre}, {"omega_slope", c.reward.omega_slope}};
+  // only when not the default: the task JSON of every act/2 run before it is as it was
+  if (c.reward.progress != RewardProgress::kCommanded) j["reward"]["progress"] = reward_progress_name(c.reward.progress);
   j["task_scale"] = task_scale_name(c.task_scale);
   j["control_mode"] = control_mode_name(c.control_mode);
   return j;
@@ -151,11 +153,14 @@ TaskConfig task_config_from_json(const json& settings, TaskConfig c, bool check)
     } else if (key == "observation") {
       c.observation = observation_from_json(value, c.observation);
     } else if (key == "reward") {
-      if (!value.is_object()) refuse(key, "must be an object {\"omega_centre\", \"omega_slope\"}, got " + value.dump());
+      if (!value.is_object())
+        refuse(key, "must be an object {\"omega_centre\", \"omega_slope\", \"progress\"}, got " + value.dump());
       for (const auto& [k, v] : value.items()) {
-        if (k == "omega_centre") c.reward.omega_centre = number(v, "reward." + k);
-        else if (k == "omega_slope") c.reward.omega_slope = number(v, "reward." + k);
-        else refuse("reward." + k, "is not a task setting (reward has omega_centre, omega_slope)");
+        const std::string name = "reward." + k;
+        if (k == "omega_centre") c.reward.omega_centre = number(v, name);
+        else if (k == "omega_slope") c.reward.omega_slope = number(v, name);
+        else if (k == "progress") c.reward.progress = named(name, [&] { return parse_reward_progress(text(v, name)); });
+        else refuse(name, "is not a task setting (reward has omega_centre, omega_slope, progress)");
       }
     } else if (key == "task_scale") {
       c.task_scale = named(key, [&] { return parse_task_scale(text(value, key)); });

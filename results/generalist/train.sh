@@ -28,7 +28,9 @@
 # (gw-train --wrong-branch-starts, training/guidewire_nav/wrong_branch_start.py), so that leaving one is learnt: the
 # fifth version, on trial (results/generalist/README.md "Wrong-branch starts"); give it its own OUT. ANCHOR=W1,W2
 # replaces the anchor's weights (rotation, insertion; default 10,1). PULLBACK=N pulls a share of those starts back out
-# of the child, up to N env steps, the tip left aimed into it (gw-train --wrong-branch-pullback; default 0).
+# of the child, up to N env steps, the tip left aimed into it (gw-train --wrong-branch-pullback; default 0). TASK
+# replaces the task (a file or an inline JSON object; default training/tasks/generalist.json): e.g. the fifth trial's
+# reward paid for depth along the target's course (results/generalist/README.md "Progress along the course").
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 MINUTES=${MINUTES:-65}
@@ -44,7 +46,7 @@ else
 fi
 resume=()
 if [ -f "$OUT/settings.json" ]; then resume=(--resume); fi  # a run already started: go on from its last checkpoint
-.venv/bin/gw-train --anatomies "$POOL/index.json" --task training/tasks/generalist.json \
+.venv/bin/gw-train --anatomies "$POOL/index.json" --task "${TASK:-training/tasks/generalist.json}" \
   --init-actor policy/trained/sac_actor.json --init-log-std=-2.3,0.5 --actor-freeze-steps 10000 --learning-starts 300 \
   --anchor-weight "${ANCHOR:-10,1}" --buffer-size 200000 --gamma 0.995 --ent-coef auto_0.02 \
   --train-freq 4 --gradient-steps 2 --total-steps 400000 --envs 2 --eval-episodes 0 --checkpoint-every 10000 \

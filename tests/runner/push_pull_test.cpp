@@ -3,6 +3,7 @@
 // the wire is never pulled out past its start; with recovery the actor pulls out of a wrong child itself and
 // its (K+1)-th entry ends the procedure. An act/2 actor's JSON sets the task's layouts.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -289,4 +290,61 @@ TEST_CASE("push/pull: the shipped push/pull actor runs an episode end to end, th
   bool varied = false;
   for (std::size_t f = 1; f < a.insertion.size(); ++f) varied = varied || (a.agent_in_control[f] && a.insertion[f] != 1.0);
   CHECK(varied);
+}
+
+TEST_CASE("push/pull, progress along the course: a push into a wrong child earns less, and after pulling out of it "
+          "the correct child pays before the commands are back at their deepest",
+          "[runner][push_pull]") {
+  gw::NavigationTask commanded = t1_task(true, 1), course = t1_task(true, 1);
+  course.config.reward.progress = gw::RewardProgress::kCourse;
+  const gw::TaskConfig& c = course.config;
+  const double step_mm = c.frame_skip * c.dt_s * c.push_mm_per_s;
+  gw::EpisodeState a = gw::reset_episode(commanded, 0, 1, 5), b = gw::reset_episode(course, 0, 1, 5);
+  double deepest = b.progress_mm, paid_commanded = 0.0, paid_course = 0.0;
+  // The progress term each step paid, from the reward: what is left once the other terms are taken off.
+  auto progress_paid = [&c](const gw::StepOutcome& out, double omega_before, bool wrong) {
+    return out.reward - gw::push_pull_reward(out.obs[gw::obs_index::kOmega], omega_before,
+                                             out.obs[gw::obs_index::kLambda], out.obs[gw::obs_index::kAction], 0.0,
+                                             wrong, c.reward_wrong_branch, c.reward_time_per_step, c.reward);
+  };
+  auto step = [&](const gw::Action& act) {
+    const double omega_before = a.obs[gw::obs_index::kOmega];
+    const gw::StepOutcome oa = gw::step_episode(commanded, a, act), ob = gw::step_episode(course, b, act);
+    REQUIRE(a.tip == b.tip);  // the reward changes nothing else
+    const bool wrong = ob.obs[gw::obs_index::kWrongBranch] > 0;
+    const double lambda_term = 0.5 * (1.0 - ob.obs[gw::obs_index::kLambda]);
+    const double forward = std::clamp((b.progress_mm - deepest) / step_mm, 0.0, 1.0);
+    deepest = std::max(deepest, b.progress_mm);
+    REQUIRE(progress_paid(ob, omega_before, wrong) == Approx(forward * lambda_term).margin(1e-9));
+    paid_commanded += progress_paid(oa, omega_before, wrong);
+    paid_course += progress_paid(ob, omega_before, wrong);
+    return ob;
+  };
+  // 1. Aimed into the wrong child and pushed until the tip is in it.
+  gw::StepOutcome out;
+  do out = step(gw::Action{gwtest::aim_rotation(b.obs, true), 1.0});
+  while (!out.info.strict_end && !b.done);
+  REQUIRE(out.info.wrong_branch);
+  for (int k = 0; k < 10 && !b.done; ++k) out = step(gw::Action{0.0, 1.0});
+  REQUIRE_FALSE(b.done);
+  CHECK(paid_course < paid_commanded);
+  // 2. Out of it again and ten steps further, then aimed at the correct child and pushed: under kCommanded the
+  // progress term pays only once the commands are back where they went, under kCourse as soon as the tip is deeper
+  // along the course than ever (past the fork).
+  int pulled = 0;
+  while ((b.obs[gw::obs_index::kWrongBranch] > 0 || pulled < 10) && pulled < 200) {
+    out = step(gw::Action{0.0, -1.0});
+    pulled += b.obs[gw::obs_index::kWrongBranch] > 0 ? 0 : 1;
+  }
+  REQUIRE(b.obs[gw::obs_index::kWrongBranch] == 0.0);
+  int first_commanded = -1, first_course = -1;
+  for (int k = 0; k < 300 && !b.done && first_commanded < 0; ++k) {
+    const double before_commanded = paid_commanded, before_course = paid_course;
+    out = step(gw::Action{gwtest::aim_rotation(b.obs, false), 1.0});
+    if (first_course < 0 && paid_course > before_course + 1e-12) first_course = k;
+    if (paid_commanded > before_commanded + 1e-12) first_commanded = k;
+  }
+  INFO("first paid step after the pull-back: commanded " << first_commanded << ", course " << first_course);
+  REQUIRE(first_course >= 0);
+  CHECK((first_commanded < 0 || first_course < first_commanded));
 }

@@ -48,6 +48,7 @@ gw::TaskConfig changed_config() {
   c.reward_force_per_N = 0.75;
   c.force_limit_N = 1.25;
   c.close_junction_diameters = 3.0;
+  c.reward.progress = gw::RewardProgress::kCourse;
   return c;
 }
 
@@ -72,6 +73,11 @@ TEST_CASE("task JSON: a round trip keeps every field, and every field is written
     INFO("observation." << key);  // tip_force is written only when true (obs/8), so the defaults lack it
     CHECK(defaults.at("observation").value(key, nlohmann::json()) != value);
   }
+  for (const auto& [key, value] : j.at("reward").items()) {
+    INFO("reward." << key);  // progress is written only when not "commanded", so the defaults lack it
+    CHECK(defaults.at("reward").value(key, nlohmann::json()) != value);
+  }
+  CHECK(j.at("reward").at("progress") == "course");
 }
 
 TEST_CASE("task JSON: a partial object changes only its keys, and the observation may be a layout name") {
@@ -122,6 +128,8 @@ TEST_CASE("task JSON: bad input is refused naming the key") {
   CHECK_THAT(refused({{"push_speed", 10.0}}), Contains("\"push_speed\" is not a task setting"));
   CHECK_THAT(refused({{"observation", {{"omega_sides", true}}}}), Contains("\"observation.omega_sides\" is not"));
   CHECK_THAT(refused({{"reward", {{"centre", 0.0}}}}), Contains("\"reward.centre\" is not"));
+  CHECK_THAT(refused({{"reward", {{"progress", "depth"}}}}), Contains("\"reward.progress\""));
+  CHECK_THAT(refused({{"reward", {{"progress", 1}}}}), Contains("\"reward.progress\" must be a string"));
   CHECK_THAT(refused({{"push_mm_per_s", "fast"}}), Contains("\"push_mm_per_s\" must be a number"));
   CHECK_THAT(refused({{"frame_skip", 2.5}}), Contains("\"frame_skip\" must be an integer"));
   CHECK_THAT(refused({{"recovery_assist", 1}}), Contains("\"recovery_assist\" must be true or false"));

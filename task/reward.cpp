@@ -33,7 +33,7 @@ double push_pull_reward(double omega, double omega_before, double lambda_ratio, 
 RewardProgress parse_reward_progress(const std::string& text) {
   if (text == "commanded") return RewardProgress::kCommanded;
   if (text == "course") return RewardProgress::kCourse;
-  throw std::invalid_argument("reward progress must be \"commanded\" or \"course\", got \"" + text + "\"");
+  throw std::invalid_argument("reward progress '" + text + "' is not one of commanded, course");
 }
 
 const char* reward_progress_name(RewardProgress progress) {

@@ -4,11 +4,6 @@
 
 namespace gw {
 
-// r = 2 / (1 + exp(slope (omega - centre))) - 1  +  0.5 (1 - lambda_t / lambda_0)  -  0.2 |a_t|
-// The paper's sigmoid is centre 0.1, slope 5 (the defaults). It is flat below omega ~ -0.5 (0.955 at
-// -0.65, 0.992 at -1) while a rotation step costs 0.2 |a|, so it barely pays for the fine aim
-// (omega near -1) that decides shallow branches; a shifted, steeper sigmoid (e.g. centre -0.5, slope 8)
-// keeps paying down to omega ~ -0.9. The shape is a task setting so a policy's training records it.
 // What act/2's progress term is paid for (push_pull_reward's `new_depth`; act/1 ignores it).
 enum class RewardProgress {
   kCommanded,  // the insertion commands summed past their deepest so far: every act/2 actor before 2026-12-07
@@ -18,6 +13,11 @@ enum class RewardProgress {
                // commands are deeper than they went into the wrong child; results/generalist/README.md)
 };
 
+// r = 2 / (1 + exp(slope (omega - centre))) - 1  +  0.5 (1 - lambda_t / lambda_0)  -  0.2 |a_t|
+// The paper's sigmoid is centre 0.1, slope 5 (the defaults). It is flat below omega ~ -0.5 (0.955 at
+// -0.65, 0.992 at -1) while a rotation step costs 0.2 |a|, so it barely pays for the fine aim
+// (omega near -1) that decides shallow branches; a shifted, steeper sigmoid (e.g. centre -0.5, slope 8)
+// keeps paying down to omega ~ -0.9. The shape is a task setting so a policy's training records it.
 struct RewardShape {
   double omega_centre = 0.1;
   double omega_slope = 5.0;

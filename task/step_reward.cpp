@@ -20,12 +20,12 @@ double step_reward(const NavigationTask& task, EpisodeState& s, const StepComman
   // commands, not the measured insertion, so that the constant push gives exactly 1); or how far the tip went along
   // the course past its deepest so far, in full-speed steps of advance (RewardProgress, reward.hpp).
   s.depth.pushed_steps += command.insertion;
-  double new_depth = std::clamp(s.depth.pushed_steps - s.depth.deepest_pushed_steps, 0.0, 1.0);
+  const double commanded = std::clamp(s.depth.pushed_steps - s.depth.deepest_pushed_steps, 0.0, 1.0);
   s.depth.deepest_pushed_steps = std::max(s.depth.deepest_pushed_steps, s.depth.pushed_steps);
-  if (c.reward.progress == RewardProgress::kCourse) {
-    new_depth = std::clamp((s.progress_mm - s.depth.deepest_progress_mm) / (env_dt(c) * c.push_mm_per_s), 0.0, 1.0);
-    s.depth.deepest_progress_mm = std::max(s.depth.deepest_progress_mm, s.progress_mm);
-  }
+  const double along_course =
+      std::clamp((s.progress_mm - s.depth.deepest_progress_mm) / (env_dt(c) * c.push_mm_per_s), 0.0, 1.0);
+  s.depth.deepest_progress_mm = std::max(s.depth.deepest_progress_mm, s.progress_mm);
+  const double new_depth = c.reward.progress == RewardProgress::kCourse ? along_course : commanded;
   return push_pull_reward(s.obs[obs_index::kOmega], command.omega_before, s.obs[obs_index::kLambda], command.rotation,
                           new_depth, in_wrong_branch, c.reward_wrong_branch, c.reward_time_per_step, c.reward);
 }

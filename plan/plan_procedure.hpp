@@ -34,7 +34,8 @@
 namespace gw {
 
 // A closed-loop controller the strict search runs first from the start: the action for the planning task's
-// observation (obs/5; a rotation-only controller pushes at +1).
+// observation (obs/8; a controller of a shorter layout reads its first entries; a rotation-only
+// controller pushes at +1).
 struct PlanGuide {
   std::string name;
   std::function<Action(const Observation&)> act;

@@ -6,7 +6,7 @@ namespace gw {
 
 TaskConfig planning_task_config(const TaskConfig& base) {
   const nlohmann::json patch = {{"action", "guidewire-nav/act/2"},
-                                {"observation", "guidewire-nav/obs/5"},
+                                {"observation", "guidewire-nav/obs/8"},
                                 {"control_mode", "always"},
                                 {"recovery_attempts", kPlanEntries},
                                 {"recovery_assist", false},

@@ -24,7 +24,8 @@ def test_plan_writes_a_replayable_plan_and_demonstrations(tmp_path):
     assert (out / "target2.png").is_file() and (out / "episode0_target2.json").is_file()
     lines = [json.loads(x) for x in demos.read_text().splitlines()]
     assert [d["action"] for d in lines] == plan["actions"]  # one pair per step in control, in order
-    assert all(len(d["obs"]) == len(lines[0]["obs"]) > 0 for d in lines)
+    assert plan["task"]["observation"]["tip_force"]  # obs/8, the generalist's layout: obs/5 and the tip force
+    assert all(len(d["obs"]) == 15 and 0.0 <= d["obs"][14] for d in lines)
 
     r = subprocess.run([app("navigate"), "--anatomy", T1, "--replay", str(out / "plan.json"), "--json"],
                        capture_output=True, text=True, timeout=600)

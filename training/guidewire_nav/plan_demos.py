@@ -9,7 +9,7 @@ kept as (observation, action) pairs in the planning task's layouts (obs/8, act/2
 The episodes run in a seeded shuffled order, so that a data set cut short is a uniform sample of the pool; an
 episode already in plans.jsonl is not planned again (a run resumes where it stopped). Bounded by --max-minutes
 and --max-episodes.
-  python -m guidewire_nav.plan_demos --anatomies runs/pool/train/index.json --out runs/demos --jobs 2
+  gw-plan-demos --anatomies runs/pool/train/index.json --out runs/demos --jobs 2
 """
 from __future__ import annotations
 
@@ -22,6 +22,8 @@ import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
+
+from guidewire_nav import app_path
 
 REPO = Path(__file__).resolve().parents[2]
 TARGET_LINE = re.compile(r"^\s+(\d+)\s+\(")
@@ -36,7 +38,6 @@ def parse_args(argv=None) -> argparse.Namespace:
     p.add_argument("--budget", type=int, default=10000, help="plan --budget: env steps one search may simulate")
     p.add_argument("--max-episodes", type=int, default=0, help="plan at most this many episodes (0: all)")
     p.add_argument("--max-minutes", type=float, default=0.0, help="start no plan after this many minutes (0: none)")
-    p.add_argument("--build", default=str(REPO / "build"), help="the C++ build directory (apps/plan, apps/navigate)")
     return p.parse_args(argv)
 
 
@@ -87,7 +88,7 @@ def main(argv=None) -> int:
     commit = subprocess.run(["git", "-C", str(REPO), "rev-parse", "HEAD"], capture_output=True, text=True).stdout.strip()
     with (out / "settings.jsonl").open("a") as f:  # one line per call: what each part of the data set was made with
         f.write(json.dumps({**vars(args), "git_commit": commit, "started": time.strftime("%Y-%m-%dT%H:%M:%S")}) + "\n")
-    episodes = episodes_of(Path(args.anatomies), f"{args.build}/apps/navigate", args.seed)
+    episodes = episodes_of(Path(args.anatomies), str(app_path("navigate")), args.seed)
     log = out / "plans.jsonl"
     done = {(d["anatomy"], d["target"], d["seed"]) for d in map(json.loads, log.read_text().splitlines())} \
         if log.is_file() else set()
@@ -101,7 +102,7 @@ def main(argv=None) -> int:
     def work(e: dict) -> None:
         if time.time() > deadline:
             return
-        line = plan_one(f"{args.build}/apps/plan", e, out, args.budget)
+        line = plan_one(str(app_path("plan")), e, out, args.budget)
         with lock, log.open("a") as f:
             f.write(json.dumps(line) + "\n")
 

@@ -24,7 +24,7 @@
 namespace {
 
 struct PlanArgs {
-  std::string anatomy_path, inlet_text, out_dir, wire_path, demos_path;
+  std::string anatomy_path, inlet_text, out_dir, wire_path, demos_path, lead_in_path;
   int target = 0;
   std::uint64_t seed = 0;
   gw::NavigationAnatomyOptions load;
@@ -49,6 +49,9 @@ void add_plan_options(CLI::App& app, PlanArgs& a) {
       ->check(CLI::PositiveNumber);
   app.add_option("--hold", a.plan.hold_steps, "env steps one maneuver holds its action")->check(CLI::Range(1, 100));
   app.add_flag("--strict-only", a.plan.strict_only, "search only strict plans (no wrong branch ever entered)");
+  app.add_option("--lead-in", a.lead_in_path,
+                 "an actor JSON: search from where its episode stopped getting deeper, 1 s before its deepest step "
+                 "(the plan's first steps are its own; --demos writes only the search's)");
   app.add_option("--out", a.out_dir, "write plan.json and the replayed episode's PNG, VTK and JSON here");
   app.add_option("--demos", a.demos_path,
                  "write the plan's (observation, action) pairs here, JSON lines, in the plan task's layout (obs/5, act/2)");
@@ -84,15 +87,19 @@ gw::EpisodeTrace replay_plan(const gw::NavigationTask& task, const PlanArgs& a, 
   return trace;
 }
 
-// One JSON line per step in control: the observation the plan's step was taken from and its [rotation, insertion].
-void write_demonstrations(const std::string& path, const gw::EpisodeTrace& trace, const nlohmann::json& doc) {
+// One JSON line per step in control after the lead-in's (`skip` env steps): the observation the plan's step was
+// taken from and its [rotation, insertion].
+void write_demonstrations(const std::string& path, const gw::EpisodeTrace& trace, const nlohmann::json& doc,
+                          std::size_t skip) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path + ": cannot open for writing");
   const nlohmann::json& actions = doc["actions"];
   std::size_t next = 0;
   for (std::size_t frame = 0; frame + 1 < trace.time_s.size() && next < actions.size(); ++frame)
-    if (trace.agent_in_control[frame + 1])
-      out << nlohmann::json{{"obs", trace.observation[frame]}, {"action", actions[next++]}}.dump() << "\n";
+    if (trace.agent_in_control[frame + 1]) {
+      if (frame >= skip) out << nlohmann::json{{"obs", trace.observation[frame]}, {"action", actions[next]}}.dump() << "\n";
+      ++next;
+    }
   if (!out) throw std::runtime_error(path + ": write failed");
 }
 
@@ -106,6 +113,7 @@ int plan_main(PlanArgs a) {
   gw::apply_heart_settings(anatomy, a.heart);
   const gw::NavigationTask task = gw::make_navigation_task(config, wire, {anatomy});
   a.plan.guides = gw::controller_guides(gw::default_policy_path());
+  if (!a.lead_in_path.empty()) a.plan.lead_in = gw::actor_guide(a.lead_in_path);
   const gw::ProcedurePlan plan = gw::plan_procedure(task, 0, a.target, a.seed, a.plan);
   nlohmann::json doc = plan_document(a, plan, config);
   const gw::EpisodeTrace trace = replay_plan(task, a, plan, doc);
@@ -117,7 +125,8 @@ int plan_main(PlanArgs a) {
                                  {"plan: " + std::string(gw::plan_kind_name(plan.kind)) + ", target " + std::to_string(a.target)},
                                  anatomy.scene.get());
   }
-  if (!a.demos_path.empty()) write_demonstrations(a.demos_path, trace, doc);
+  if (!a.demos_path.empty())
+    write_demonstrations(a.demos_path, trace, doc, plan.lead_in ? static_cast<std::size_t>(plan.lead_in->steps) : 0);
   const gw::SearchStats& last = plan.procedure.maneuvers > 0 ? plan.procedure : plan.strict;
   std::cerr << "plan: " << a.anatomy_path << " target " << a.target << ": " << gw::plan_kind_name(plan.kind)
             << (plan.kind == gw::PlanKind::kNone ? " found, the tip got within " + std::to_string(plan.tip_to_target_mm) + " mm of the target"

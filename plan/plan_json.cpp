@@ -40,6 +40,10 @@ nlohmann::json plan_to_json(const ProcedurePlan& plan) {
                       {"actions", actions}};
   if (plan.kind == PlanKind::kNone) j["why"] = plan.why;
   if (!plan.guide.empty()) j["guide"] = plan.guide;
+  if (plan.lead_in)
+    j["lead_in"] = {{"controller", plan.lead_in->controller}, {"steps", plan.lead_in->steps},
+                    {"deepest_step", plan.lead_in->deepest_step}, {"ran", plan.lead_in->ran},
+                    {"outcome", plan.lead_in->outcome}};
   j["search"]["strict"] = stats_json(plan.strict);
   if (plan.procedure.maneuvers > 0) j["search"]["procedure"] = stats_json(plan.procedure);
   return j;

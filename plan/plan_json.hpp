@@ -3,7 +3,8 @@
 // plan_to_json: Input: a plan. Output: {"format", "found": none|strict|procedure, "reached", "steps",
 // "procedure_time_s", "wrong_entries", "peak_tip_force_N", "peak_node_force_N", "tip_end", "tip_to_target_mm",
 // "actions": [[rotation, insertion], ...] (the in-control steps', the order a controller is asked),
-// "search": {"strict": {...}, "procedure": {...}}}; the caller adds what the plan ran on (anatomy, target,
+// "search": {"strict": {...}, "procedure": {...}}, and with a lead-in "lead_in": {"controller", "steps" (the plan's first
+// steps, the controller's), "deepest_step", "ran", "outcome"}}; the caller adds what the plan ran on (anatomy, target,
 // seed, task, wire, heart).
 // plan_actions_from_json: Input: such a document; `where` names it in errors. Output: its actions. Throws
 // std::invalid_argument naming `where` and the problem for another format or a malformed action list.

@@ -1,6 +1,7 @@
 #include "plan/plan_procedure.hpp"
 
 #include "base/util/fixed_digits.hpp"
+#include "plan/lead_in.hpp"
 #include "plan/narrowest_passage.hpp"
 
 #include <array>
@@ -61,16 +62,15 @@ class Search {
   Search(const NavigationTask& task, const PlanOptions& o, bool strict, long budget)
       : task_(task), o_(o), strict_(strict), budget_(budget) {}
 
-  // Runs from `root` until `successes` plans are found, the budget is spent or nothing is left open.
+  // Runs from `start` (its state; its steps from the reset, a lead-in's, are the plan's first) until `successes`
+  // plans are found, the budget is spent or nothing is left open.
   // Output: the found plans' node ids (in the order found) and the stats.
-  std::vector<int> run(const EpisodeState& root) {
+  std::vector<int> run(Node start) {
     const auto t0 = std::chrono::steady_clock::now();
-    Node start;
-    start.state = root;
-    start.cost = cost(root, 0.0);
-    stats_.nearest_target_mm = tip_to_target_mm(root);
-    stats_.best_tip = root.tip;
-    visited_.insert(cell_of(root));
+    start.cost = cost(start.state, start.peak_tip_mN);
+    stats_.nearest_target_mm = tip_to_target_mm(start.state);
+    stats_.best_tip = start.state.tip;
+    visited_.insert(cell_of(start.state));
     add(std::move(start));
     if (strict_)
       for (const PlanGuide& g : o_.guides)
@@ -192,12 +192,15 @@ class Search {
     Node child;
     child.parent = id;
     child.state = nodes_[static_cast<std::size_t>(id)].state;
+    child.peak_tip_mN = nodes_[static_cast<std::size_t>(id)].peak_tip_mN;
+    child.peak_node_mN = nodes_[static_cast<std::size_t>(id)].peak_node_mN;
     EpisodeState& s = child.state;
+    const int entries_before = s.procedure.attempts_used;
     if (g.begin) g.begin();
     while (stats_.env_steps < budget_) {
       const StepOutcome out = step_child(child, g.act(s.obs));
       if (out.info.tip_force_mN > 1000.0 * o_.force_limit_N) return void(++stats_.over_force);
-      if (out.info.wrong_branch || s.procedure.attempts_used > 0) return void(++stats_.wrong_branch);
+      if (out.info.wrong_branch || s.procedure.attempts_used > entries_before) return void(++stats_.wrong_branch);
       if (tip_to_target_mm(s) < stats_.nearest_target_mm) {
         stats_.nearest_target_mm = tip_to_target_mm(s);
         stats_.best_tip = s.tip;
@@ -234,7 +237,7 @@ ProcedurePlan plan_of(const NavigationTask& task, const std::deque<Node>& nodes,
   ProcedurePlan plan;
   plan.kind = kind;
   std::vector<int> chain;
-  for (int k = id; k > 0; k = nodes[static_cast<std::size_t>(k)].parent) chain.push_back(k);
+  for (int k = id; k >= 0; k = nodes[static_cast<std::size_t>(k)].parent) chain.push_back(k);  // the root's: a lead-in
   for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
     const Node& n = nodes[static_cast<std::size_t>(*it)];
     plan.actions.insert(plan.actions.end(), n.applied.begin(), n.applied.end());
@@ -289,6 +292,25 @@ std::optional<ProcedurePlan> too_narrow(const NavigationTask& task, int anatomy,
   return plan;
 }
 
+// The search's root: the reset, or where options.lead_in's controller stopped getting deeper (its steps to there
+// carried by the root, so every plan starts with them); `report` says what the lead-in did.
+Node root_node(const NavigationTask& task, int anatomy, int target_id, std::uint64_t seed, const PlanOptions& options,
+               std::optional<LeadInReport>& report) {
+  Node root;
+  if (!options.lead_in) {
+    root.state = reset_episode(task, anatomy, target_id, seed);
+    return root;
+  }
+  LeadIn li = lead_in(task, anatomy, target_id, seed, *options.lead_in, options.lead_in_back_steps);
+  report = LeadInReport{options.lead_in->name, li.steps, li.deepest_step, li.ran, li.outcome};
+  root.state = std::move(li.state);
+  root.applied = std::move(li.actions);
+  root.in_control = std::move(li.in_control);
+  root.peak_tip_mN = li.peak_tip_mN;
+  root.peak_node_mN = li.peak_node_mN;
+  return root;
+}
+
 }  // namespace
 
 const char* plan_kind_name(PlanKind kind) {
@@ -306,8 +328,13 @@ ProcedurePlan plan_procedure(const NavigationTask& task, int anatomy, int target
     throw std::invalid_argument("plan_procedure: the task must have the act/2 action space (planning_task_config)");
   if (!(options.force_limit_N > 0) || options.hold_steps < 1 || options.max_env_steps < 1 || options.successes < 1)
     throw std::invalid_argument("plan_procedure: force limit, hold steps, budget and successes must be positive");
-  const EpisodeState root = reset_episode(task, anatomy, target_id, seed);
-  if (auto narrow = too_narrow(task, anatomy, target_id, root)) return *narrow;
+  std::optional<LeadInReport> lead_in_report;
+  const Node root = root_node(task, anatomy, target_id, seed, options, lead_in_report);
+  const auto with_lead_in = [&](ProcedurePlan p) {
+    p.lead_in = lead_in_report;
+    return p;
+  };
+  if (auto narrow = too_narrow(task, anatomy, target_id, root.state)) return with_lead_in(*narrow);
   const long strict_budget = options.strict_only ? options.max_env_steps : options.max_env_steps / 2;
   Search strict(task, options, true, strict_budget);
   const std::vector<int> strict_found = strict.run(root);
@@ -317,14 +344,14 @@ ProcedurePlan plan_procedure(const NavigationTask& task, int anatomy, int target
     plan = plan_of(task, strict.nodes(), best, PlanKind::kStrict);
     plan.guide = strict.guide_of(best);
     plan.strict = strict.stats();
-    return plan;
+    return with_lead_in(plan);
   }
   if (options.strict_only) {
     plan.strict = strict.stats();
     plan.why = why_none(strict.stats(), nullptr, options.max_env_steps);
     plan.tip_end = strict.stats().best_tip;
     plan.tip_to_target_mm = strict.stats().nearest_target_mm;
-    return plan;
+    return with_lead_in(plan);
   }
   Search procedure(task, options, false, options.max_env_steps - strict.stats().env_steps);
   const std::vector<int> found = procedure.run(root);
@@ -340,7 +367,7 @@ ProcedurePlan plan_procedure(const NavigationTask& task, int anatomy, int target
   }
   plan.strict = strict.stats();
   plan.procedure = procedure.stats();
-  return plan;
+  return with_lead_in(plan);
 }
 
 }  // namespace gw

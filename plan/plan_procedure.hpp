@@ -51,6 +51,19 @@ struct PlanOptions {
   double force_weight = 10.0;      // cost (mm) per N of peak tip force so far
   bool strict_only = false;        // skip the procedure search
   std::vector<PlanGuide> guides;   // run first by the strict search, in order (none: the search alone)
+  // The search starts where this controller's episode stopped getting deeper, lead_in_back_steps before its deepest
+  // step (plan/lead_in.hpp); the plan's first steps are the controller's. None: from the reset.
+  std::optional<PlanGuide> lead_in;
+  int lead_in_back_steps = 25;     // 1 s at 0.04 s a step
+};
+
+// What a lead-in did (ProcedurePlan::lead_in): the plan's first `steps` env steps are its controller's.
+struct LeadInReport {
+  std::string controller;
+  int steps = 0;         // the controller's steps in the plan (the search started after them)
+  int deepest_step = 0;  // the step after which its tip was deepest along the course
+  int ran = 0;           // the steps its own episode ran
+  std::string outcome;   // how its own episode ended (LeadIn::outcome)
 };
 
 enum class PlanKind { kNone, kStrict, kProcedure };
@@ -85,6 +98,7 @@ struct ProcedurePlan {
   double tip_to_target_mm = 0.0;    // the tip's straight distance to the target at the end (none found: the nearest)
   SearchStats strict, procedure;    // procedure: left at zero when the strict search found a plan
   std::string guide;                // the guide whose procedure this is ("": the search's own)
+  std::optional<LeadInReport> lead_in;  // set when the search started from a lead-in (PlanOptions::lead_in)
   // None found: why, in words. "unreachable: ..." where the course narrows below the wire (narrowest_passage; no
   // search is run), "search exhausted: ..." where every way forward was tried, "budget spent: ..." otherwise.
   std::string why;

@@ -15,4 +15,9 @@ std::vector<PlanGuide> controller_guides(const std::string& actor_path) {
   return guides;
 }
 
+PlanGuide actor_guide(const std::string& actor_path) {
+  std::shared_ptr<Controller> c = make_controller("policy", actor_path);
+  return {recorded_path(actor_path), [c](const Observation& obs) { return c->act(obs); }, [c] { c->begin_episode(); }};
+}
+
 }  // namespace gw

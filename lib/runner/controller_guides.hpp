@@ -12,4 +12,8 @@ namespace gw {
 
 std::vector<PlanGuide> controller_guides(const std::string& actor_path);
 
+// actor_guide: one actor JSON as a PlanGuide (a plan's lead-in, PlanOptions::lead_in), named by its file; it reads the
+// first entries of the planning task's observation that its layout has.
+PlanGuide actor_guide(const std::string& actor_path);
+
 }  // namespace gw

@@ -280,3 +280,36 @@ TEST_CASE("plan: a guide that reaches the target gives a plan that replays, one 
   CHECK(searched.guide.empty());
   CHECK(searched.strict.guided == 0);
 }
+
+TEST_CASE("plan: from a lead-in, the search starts 1 s before the controller's deepest step and the plan replays",
+          "[plan][lead-in]") {
+  // The lead-in: a hand that pushes for 60 steps and then pulls back until its episode ends (stuck or wire out);
+  // the plan starts with its steps up to 25 before its deepest along the course.
+  int step = 0;
+  gw::PlanGuide give_up{"give-up", [&step](const gw::Observation&) {
+                          return gw::Action{0.0, ++step <= 60 ? 1.0 : -1.0};
+                        }, [&step] { step = 0; }};
+  gw::PlanOptions o;
+  o.successes = 1;
+  o.lead_in = give_up;
+  const gw::ProcedurePlan plan = gw::plan_procedure(y_task(), 0, 2, 3, o);
+  INFO(gw::plan_to_json(plan).dump().substr(0, 900));
+  REQUIRE(plan.lead_in);
+  CHECK(plan.lead_in->controller == "give-up");
+  CHECK(plan.lead_in->outcome != "success");
+  CHECK(plan.lead_in->deepest_step > 50);
+  CHECK(plan.lead_in->deepest_step <= 61);
+  CHECK(plan.lead_in->ran > plan.lead_in->deepest_step);
+  CHECK(plan.lead_in->steps == plan.lead_in->deepest_step - o.lead_in_back_steps);
+  REQUIRE(plan.kind != gw::PlanKind::kNone);
+  REQUIRE(plan.actions.size() > static_cast<std::size_t>(plan.lead_in->steps));
+  for (int k = 0; k < plan.lead_in->steps; ++k) CHECK(plan.actions[static_cast<std::size_t>(k)].insertion == 1.0);
+  const nlohmann::json j = gw::plan_to_json(plan);
+  CHECK(j["lead_in"]["steps"] == plan.lead_in->steps);
+  const gw::EpisodeTrace a = replay(plan, 2, 3);  // from the reset: the lead-in's steps, then the search's
+  CHECK(gw::procedure_outcome(a) == "success");
+  REQUIRE(a.time_s.size() == plan.actions.size() + 1);
+  CHECK(a.tip.back() == plan.tip_end);
+  o.lead_in_back_steps = -1;
+  CHECK_THROWS_WITH(gw::plan_procedure(y_task(), 0, 2, 3, o), Catch::Contains("back_steps"));
+}

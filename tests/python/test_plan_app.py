@@ -40,3 +40,21 @@ def test_plan_writes_a_replayable_plan_and_demonstrations(tmp_path):
     r = subprocess.run([app("navigate"), "--anatomy", T1, "--replay", str(out / "plan.json"), "--controller", "push-only"],
                        capture_output=True, text=True, timeout=600)
     assert r.returncode != 0 and "--replay" in r.stderr.strip().splitlines()[-1]
+
+
+def test_plan_from_a_lead_in_writes_only_the_search_steps_as_demonstrations(tmp_path):
+    actor = str(REPO / "policy/trained/sac_actor.json")
+    out, demos = tmp_path / "plan", tmp_path / "demos.jsonl"
+    r = subprocess.run([app("plan"), "--anatomy", T1, "--target", "2", "--seed", "4", "--lead-in", actor,
+                        "--out", str(out), "--demos", str(demos), "--json"], capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    plan = json.loads(r.stdout)
+    lead = plan["lead_in"]
+    assert lead["controller"].endswith("sac_actor.json") and lead["outcome"] == "success"  # it reaches this target
+    assert lead["steps"] == min(lead["deepest_step"], lead["ran"] - 1) - 25 > 0
+    lines = [json.loads(x) for x in demos.read_text().splitlines()]
+    assert [d["action"] for d in lines] == plan["actions"][lead["steps"]:]  # the search's steps, not the actor's
+    r = subprocess.run([app("navigate"), "--anatomy", T1, "--replay", str(out / "plan.json"), "--json"],
+                       capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    assert json.loads(r.stdout)["results"][0]["recovery"]["steps"] == plan["steps"]  # from the reset, retraced

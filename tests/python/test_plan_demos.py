@@ -34,6 +34,19 @@ def test_plan_demos_plans_every_target_once_and_resumes(tmp_path):
         assert all(len(p["obs"]) == 15 and len(p["action"]) == 2 for p in pairs)
 
 
+def test_plan_demos_from_a_lead_in_records_it(tmp_path):
+    app("plan")
+    index = tmp_path / "pool" / "index.json"
+    index.parent.mkdir()
+    index.write_text(json.dumps({"anatomies": [{"name": "y", "set": "train", "mesh": str(T1)}]}))
+    out = tmp_path / "demos"
+    plan_demos.main(["--anatomies", str(index), "--out", str(out), "--max-episodes", "1", "--lead-in", str(SHIPPED)])
+    (line,) = [json.loads(x) for x in (out / "plans.jsonl").read_text().splitlines()]
+    assert line["lead_in"]["outcome"] == "success" and line["lead_in"]["steps"] > 0
+    pairs = (out / "episodes" / line["demos"]).read_text().splitlines()
+    assert len(pairs) == line["steps"] - line["lead_in"]["steps"]
+
+
 def write_demos(folder: Path, episodes: int, steps: int, rng) -> None:
     """Episodes whose insertion falls with obs entry 14 (pull when the tip presses) and whose last
     insertion entry (12) copies the action, as a plan's held actions do."""

@@ -38,6 +38,8 @@ def parse_args(argv=None) -> argparse.Namespace:
     p.add_argument("--budget", type=int, default=10000, help="plan --budget: env steps one search may simulate")
     p.add_argument("--max-episodes", type=int, default=0, help="plan at most this many episodes (0: all)")
     p.add_argument("--max-minutes", type=float, default=0.0, help="start no plan after this many minutes (0: none)")
+    p.add_argument("--lead-in", default="", help="an actor JSON: plan each episode from where it stopped getting "
+                   "deeper (plan --lead-in); the demonstrations are the search's steps only")
     return p.parse_args(argv)
 
 
@@ -62,13 +64,14 @@ def episodes_of(index_path: Path, navigate: str, seed: int) -> list[dict]:
     return episodes
 
 
-def plan_one(plan_bin: str, e: dict, out: Path, budget: int) -> dict:
+def plan_one(plan_bin: str, e: dict, out: Path, budget: int, lead_in: str) -> dict:
     """Plan one episode; its demonstrations into out/episodes; returns its plans.jsonl line."""
     name = f"{e['anatomy']}_t{e['target']}_s{e['seed']}"
     demos = out / "episodes" / f"{name}.jsonl"
     start = time.time()
     r = subprocess.run([plan_bin, "--anatomy", e["mesh"], "--target", str(e["target"]), "--seed", str(e["seed"]),
-                        "--budget", str(budget), "--demos", str(demos), "--json"],
+                        "--budget", str(budget), "--demos", str(demos), "--json"]
+                       + (["--lead-in", lead_in] if lead_in else []),
                        capture_output=True, text=True, timeout=3600)
     line = {**{k: e[k] for k in ("anatomy", "target", "seed")}, "seconds": round(time.time() - start, 2)}
     if r.returncode not in (0, 2):
@@ -78,7 +81,8 @@ def plan_one(plan_bin: str, e: dict, out: Path, budget: int) -> dict:
         demos.unlink(missing_ok=True)  # no plan: no demonstration
     return {**line, "found": plan["found"], "steps": plan.get("steps"), "wrong_entries": plan.get("wrong_entries"),
             "peak_tip_force_N": plan.get("peak_tip_force_N"), "peak_node_force_N": plan.get("peak_node_force_N"),
-            "demos": demos.name if plan["reached"] else None}
+            "demos": demos.name if plan["reached"] else None,
+            **({"lead_in": plan["lead_in"]} if "lead_in" in plan else {})}
 
 
 def main(argv=None) -> int:
@@ -102,7 +106,7 @@ def main(argv=None) -> int:
     def work(e: dict) -> None:
         if time.time() > deadline:
             return
-        line = plan_one(str(app_path("plan")), e, out, args.budget)
+        line = plan_one(str(app_path("plan")), e, out, args.budget, args.lead_in)
         with lock, log.open("a") as f:
             f.write(json.dumps(line) + "\n")
 

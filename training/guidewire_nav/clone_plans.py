@@ -3,7 +3,7 @@
     gw-clone-plans --demos runs/demos_train --init-actor policy/trained/sac_actor.json \
         --out runs/clone/actor.json
 
-Reads top to bottom: the data (every episode file of DEMOS/episodes, obs/8 and act/2; a seeded tenth of the
+Reads top to bottom: the data (every episode file of each DEMOS/episodes, obs/8 and act/2; a seeded tenth of the
 episodes held out), the actor (the init actor widened to obs/8 and act/2 as gw-train widens it, so cloning starts
 from the shipped aim), the fit (Adam on the squared error of the actor's deterministic action, tanh of its mean,
 against the plan's, in minibatches, for --epochs passes), the export (the epoch with the lowest held-out error).
@@ -33,7 +33,7 @@ LAST_INSERTION = 12  # obs/5's entry: the insertion of the last env step (task/o
 
 def parse_args(argv=None) -> argparse.Namespace:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--demos", required=True, help="a plan_demos directory (its episodes/*.jsonl)")
+    p.add_argument("--demos", required=True, nargs="+", help="gw-plan-demos directories (their episodes/*.jsonl)")
     p.add_argument("--init-actor", required=True, help="the actor JSON cloning starts from (widened to obs/8, act/2)")
     p.add_argument("--out", required=True, help="the cloned actor JSON")
     p.add_argument("--epochs", type=int, default=30, help="passes over the training pairs")
@@ -44,16 +44,16 @@ def parse_args(argv=None) -> argparse.Namespace:
     return p.parse_args(argv)
 
 
-def load_episodes(demos: Path) -> list[tuple[str, np.ndarray, np.ndarray]]:
-    """Every episode's pairs: (name, obs (n, 15), action (n, 2)), in name order."""
+def load_episodes(folders: list[Path]) -> list[tuple[str, np.ndarray, np.ndarray]]:
+    """Every episode's pairs: (name, obs (n, 15), action (n, 2)), folder by folder, in name order."""
     episodes = []
-    for path in sorted((demos / "episodes").glob("*.jsonl")):
+    for path in [p for demos in folders for p in sorted((demos / "episodes").glob("*.jsonl"))]:
         rows = [json.loads(x) for x in path.read_text().splitlines() if x.strip()]
         if rows:
             episodes.append((path.stem, np.array([r["obs"] for r in rows], dtype=np.float32),
                              np.array([r["action"] for r in rows], dtype=np.float32)))
     if not episodes:
-        raise SystemExit(f"clone_plans: no demonstrations in {demos / 'episodes'}")
+        raise SystemExit(f"clone_plans: no demonstrations in {', '.join(str(d / 'episodes') for d in folders)}")
     obs_size = {e[1].shape[1] for e in episodes}
     if obs_size != {15}:
         raise SystemExit(f"clone_plans: observations of sizes {sorted(obs_size)}, expected 15 ({OBS_LAYOUT})")
@@ -102,7 +102,7 @@ def main(argv=None) -> int:
     torch.set_num_threads(1)
 
     # the data: episodes split (not pairs: one episode's pairs are alike), the last insertion masked
-    episodes = load_episodes(Path(args.demos))
+    episodes = load_episodes([Path(d) for d in args.demos])
     order = list(range(len(episodes)))
     random.Random(args.seed).shuffle(order)
     held = set(order[:max(1, int(round(args.holdout * len(episodes))))])
@@ -144,7 +144,7 @@ def main(argv=None) -> int:
             p.copy_(kept)
 
     # the export
-    provenance = {"demos": str(args.demos), "episodes": len(episodes), "held_out_episodes": len(held),
+    provenance = {"demos": [str(d) for d in args.demos], "episodes": len(episodes), "held_out_episodes": len(held),
                   "pairs": int(len(train_obs) + len(held_obs)), "epochs": args.epochs, "chosen_epoch": best[1],
                   "held_out_mse": best[0], "init_actor": str(args.init_actor), "seed": args.seed,
                   "learning_rate": args.learning_rate, "batch_size": args.batch_size,

@@ -22,7 +22,7 @@ std::string ended_by(const StepOutcome& out, const EpisodeState& s, int bound) {
 }  // namespace
 
 LeadIn lead_in(const NavigationTask& task, int anatomy, int target_id, std::uint64_t seed, const PlanGuide& controller,
-               int back_steps) {
+               int back_steps, double force_limit_N) {
   if (back_steps < 0) throw std::invalid_argument("lead_in: back_steps must be >= 0");
   LeadIn li;
   EpisodeState s = reset_episode(task, anatomy, target_id, seed);
@@ -31,11 +31,14 @@ LeadIn lead_in(const NavigationTask& task, int anatomy, int target_id, std::uint
   double deepest = s.progress_mm;
   std::vector<Action> actions;
   std::vector<bool> in_control;
+  double run_peak_tip_mN = 0.0, run_peak_node_mN = 0.0;
   if (controller.begin) controller.begin();
   while (li.outcome.empty()) {
     in_control.push_back(s.in_control);
     actions.push_back(controller.act(s.obs));
     const StepOutcome out = step_episode(task, s, actions.back());
+    run_peak_tip_mN = std::max(run_peak_tip_mN, out.info.tip_force_mN);
+    run_peak_node_mN = std::max(run_peak_node_mN, out.info.wall_force_peak_node_mN);
     if (s.progress_mm > deepest) {
       deepest = s.progress_mm;
       li.deepest_step = static_cast<int>(actions.size());
@@ -43,6 +46,15 @@ LeadIn lead_in(const NavigationTask& task, int anatomy, int target_id, std::uint
     li.outcome = ended_by(out, s, bound);
   }
   li.ran = static_cast<int>(actions.size());
+  if (li.outcome == "success" && run_peak_tip_mN <= 1000.0 * force_limit_N) {  // its own episode is the plan
+    li.steps = li.ran;
+    li.state = std::move(s);
+    li.actions = std::move(actions);
+    li.in_control = std::move(in_control);
+    li.peak_tip_mN = run_peak_tip_mN;
+    li.peak_node_mN = run_peak_node_mN;
+    return li;
+  }
   // The start: back_steps before the deepest step, and never the episode's last (its end is no state to go on from).
   li.steps = std::max(0, std::min(li.deepest_step, li.ran - 1) - back_steps);
   li.state = start;

@@ -8,7 +8,10 @@
 // should have done where it wedged, went into a wrong child or stalled: demonstrations at the states it visits
 // (DAgger's relabelling, at the state that matters), and a plan that replays from the reset (its first steps are the
 // controller's).
-// Input: the planning task, the episode (anatomy, target, seed), the controller (a PlanGuide), back_steps >= 0.
+// A controller that reaches the target with no step's tip force over force_limit_N needs no search: its whole episode
+// is returned (steps = ran, the state its end).
+// Input: the planning task, the episode (anatomy, target, seed), the controller (a PlanGuide), back_steps >= 0, the
+// plan's force budget.
 // Output: the state at the search's start, the controller's actions up to it (per env step, with whether each was
 // in control), their peak forces, and what the controller's whole episode did.
 #include <cstdint>
@@ -26,7 +29,7 @@ struct LeadIn {
   EpisodeState state;               // the search's start: `steps` env steps into the controller's episode
   std::vector<Action> actions;      // the controller's, per env step up to the start
   std::vector<bool> in_control;
-  int steps = 0;                    // env steps taken to the start
+  int steps = 0;                    // env steps taken to the start (all of them where it reached the target)
   int deepest_step = 0;             // the env step after which the tip's progress was deepest
   int ran = 0;                      // env steps the controller's whole episode ran
   std::string outcome;  // how it ended: "success", "wrong branch" (one entry too many), "time" (the bound), "stuck",
@@ -35,6 +38,6 @@ struct LeadIn {
 };
 
 LeadIn lead_in(const NavigationTask& task, int anatomy, int target_id, std::uint64_t seed, const PlanGuide& controller,
-               int back_steps);
+               int back_steps, double force_limit_N);
 
 }  // namespace gw

@@ -301,7 +301,7 @@ Node root_node(const NavigationTask& task, int anatomy, int target_id, std::uint
     root.state = reset_episode(task, anatomy, target_id, seed);
     return root;
   }
-  LeadIn li = lead_in(task, anatomy, target_id, seed, *options.lead_in, options.lead_in_back_steps);
+  LeadIn li = lead_in(task, anatomy, target_id, seed, *options.lead_in, options.lead_in_back_steps, options.force_limit_N);
   report = LeadInReport{options.lead_in->name, li.steps, li.deepest_step, li.ran, li.outcome};
   root.state = std::move(li.state);
   root.applied = std::move(li.actions);
@@ -334,6 +334,13 @@ ProcedurePlan plan_procedure(const NavigationTask& task, int anatomy, int target
     p.lead_in = lead_in_report;
     return p;
   };
+  if (lead_in_report && lead_in_report->steps == lead_in_report->ran) {  // it reached the target within the budget
+    const std::deque<Node> only{root};
+    ProcedurePlan plan = plan_of(task, only, 0, root.state.procedure.attempts_used == 0 ? PlanKind::kStrict
+                                                                                         : PlanKind::kProcedure);
+    plan.guide = lead_in_report->controller;  // its own episode, nothing searched
+    return with_lead_in(plan);
+  }
   if (auto narrow = too_narrow(task, anatomy, target_id, root.state)) return with_lead_in(*narrow);
   const long strict_budget = options.strict_only ? options.max_env_steps : options.max_env_steps / 2;
   Search strict(task, options, true, strict_budget);

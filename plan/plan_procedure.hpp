@@ -52,7 +52,8 @@ struct PlanOptions {
   bool strict_only = false;        // skip the procedure search
   std::vector<PlanGuide> guides;   // run first by the strict search, in order (none: the search alone)
   // The search starts where this controller's episode stopped getting deeper, lead_in_back_steps before its deepest
-  // step (plan/lead_in.hpp); the plan's first steps are the controller's. None: from the reset.
+  // step (plan/lead_in.hpp); the plan's first steps are the controller's. One that reaches the target within the
+  // force budget is the plan itself (nothing searched; `guide` names it). None: from the reset.
   std::optional<PlanGuide> lead_in;
   int lead_in_back_steps = 25;     // 1 s at 0.04 s a step
 };

@@ -310,6 +310,20 @@ TEST_CASE("plan: from a lead-in, the search starts 1 s before the controller's d
   CHECK(gw::procedure_outcome(a) == "success");
   REQUIRE(a.time_s.size() == plan.actions.size() + 1);
   CHECK(a.tip.back() == plan.tip_end);
+  // A lead-in that reaches the target within the budget is the plan: its whole episode, nothing searched.
+  gw::PlanOptions reach;
+  reach.lead_in = gw::PlanGuide{"rule", [](const gw::Observation& obs) {
+                                  return gw::Action{obs[gw::obs_index::kOmega] > -0.95 ? 1.0 : 0.0, 1.0};
+                                }, {}};
+  const gw::ProcedurePlan own = gw::plan_procedure(y_task(), 0, 2, 3, reach);
+  REQUIRE(own.lead_in);
+  CHECK(own.lead_in->outcome == "success");
+  CHECK(own.lead_in->steps == own.lead_in->ran);
+  CHECK(own.steps == own.lead_in->ran);
+  CHECK(own.kind == gw::PlanKind::kStrict);
+  CHECK(own.guide == "rule");
+  CHECK(own.strict.env_steps == 0);
+  CHECK(gw::procedure_outcome(replay(own, 2, 3)) == "success");
   o.lead_in_back_steps = -1;
   CHECK_THROWS_WITH(gw::plan_procedure(y_task(), 0, 2, 3, o), Catch::Contains("back_steps"));
 }

@@ -43,17 +43,34 @@ def test_plan_writes_a_replayable_plan_and_demonstrations(tmp_path):
 
 
 def test_plan_from_a_lead_in_writes_only_the_search_steps_as_demonstrations(tmp_path):
+    # The shipped actor reaches target 2 of this Y: its episode is the plan, nothing to relabel. An actor that only
+    # pulls gets no deeper than its start: the search starts at the reset, and every step is the search's.
     actor = str(REPO / "policy/trained/sac_actor.json")
     out, demos = tmp_path / "plan", tmp_path / "demos.jsonl"
     r = subprocess.run([app("plan"), "--anatomy", T1, "--target", "2", "--seed", "4", "--lead-in", actor,
+                        "--demos", str(demos), "--json"], capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    plan = json.loads(r.stdout)
+    lead = plan["lead_in"]
+    assert lead["outcome"] == "success" and lead["steps"] == lead["ran"] == plan["steps"]
+    assert plan["guide"].endswith("sac_actor.json") and plan["search"]["strict"]["maneuvers"] == 0
+    assert demos.read_text() == ""
+
+    from guidewire_nav.export_actor import widen_to_push_pull
+    d = widen_to_push_pull(json.loads(Path(actor).read_text()), insertion_bias=-3.0)  # pulls at tanh(-3)
+    last = d["layers"][-1]
+    last["weight"] = [0.0] * len(last["weight"])
+    last["bias"][0] = 0.0  # and turns not at all
+    puller = tmp_path / "puller.json"
+    puller.write_text(json.dumps(d))
+    r = subprocess.run([app("plan"), "--anatomy", T1, "--target", "2", "--seed", "4", "--lead-in", str(puller),
                         "--out", str(out), "--demos", str(demos), "--json"], capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stderr
     plan = json.loads(r.stdout)
     lead = plan["lead_in"]
-    assert lead["controller"].endswith("sac_actor.json") and lead["outcome"] == "success"  # it reaches this target
-    assert lead["steps"] == min(lead["deepest_step"], lead["ran"] - 1) - 25 > 0
+    assert lead["outcome"] != "success" and lead["deepest_step"] == 0 and lead["steps"] == 0
     lines = [json.loads(x) for x in demos.read_text().splitlines()]
-    assert [d["action"] for d in lines] == plan["actions"][lead["steps"]:]  # the search's steps, not the actor's
+    assert [d["action"] for d in lines] == plan["actions"][lead["steps"]:] != []  # the search's steps
     r = subprocess.run([app("navigate"), "--anatomy", T1, "--replay", str(out / "plan.json"), "--json"],
                        capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stderr

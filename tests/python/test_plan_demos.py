@@ -15,12 +15,17 @@ T1 = REPO / "anatomies/train/t1_straight_y/t1_straight_y.stl"
 SHIPPED = REPO / "policy/trained/sac_actor.json"
 
 
-def test_plan_demos_plans_every_target_once_and_resumes(tmp_path):
+def one_anatomy_pool(tmp_path: Path) -> Path:
+    """A pool index of one anatomy, the training Y (two targets); skips when plan is not built."""
     app("plan")
     index = tmp_path / "pool" / "index.json"
     index.parent.mkdir()
     index.write_text(json.dumps({"anatomies": [{"name": "y", "set": "train", "mesh": str(T1)}]}))
-    out = tmp_path / "demos"
+    return index
+
+
+def test_plan_demos_plans_every_target_once_and_resumes(tmp_path):
+    index, out = one_anatomy_pool(tmp_path), tmp_path / "demos"
     assert plan_demos.main(["--anatomies", str(index), "--out", str(out), "--max-episodes", "1", "--jobs", "1"]) == 0
     assert plan_demos.main(["--anatomies", str(index), "--out", str(out), "--jobs", "2"]) == 0  # the rest, not again
     lines = [json.loads(x) for x in (out / "plans.jsonl").read_text().splitlines()]
@@ -35,11 +40,7 @@ def test_plan_demos_plans_every_target_once_and_resumes(tmp_path):
 
 
 def test_plan_demos_from_a_lead_in_records_it(tmp_path):
-    app("plan")
-    index = tmp_path / "pool" / "index.json"
-    index.parent.mkdir()
-    index.write_text(json.dumps({"anatomies": [{"name": "y", "set": "train", "mesh": str(T1)}]}))
-    out = tmp_path / "demos"
+    index, out = one_anatomy_pool(tmp_path), tmp_path / "demos"
     plan_demos.main(["--anatomies", str(index), "--out", str(out), "--max-episodes", "1", "--lead-in", str(SHIPPED)])
     (line,) = [json.loads(x) for x in (out / "plans.jsonl").read_text().splitlines()]
     assert line["lead_in"]["outcome"] == "success" and line["lead_in"]["steps"] == line["steps"] > 0

@@ -54,7 +54,7 @@ void add_plan_options(CLI::App& app, PlanArgs& a) {
                  "(the plan's first steps are its own; --demos writes only the search's)");
   app.add_option("--out", a.out_dir, "write plan.json and the replayed episode's PNG, VTK and JSON here");
   app.add_option("--demos", a.demos_path,
-                 "write the plan's (observation, action) pairs here, JSON lines, in the plan task's layout (obs/5, act/2)");
+                 "write the plan's (observation, action) pairs here, JSON lines, in the plan task's layout (obs/8, act/2)");
   app.add_flag("--json", a.print_json, "print the plan JSON on stdout");
 }
 

@@ -24,8 +24,8 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from guidewire_nav import app_path
+from guidewire_nav.export_actor import _git_commit
 
-REPO = Path(__file__).resolve().parents[2]
 TARGET_LINE = re.compile(r"^\s+(\d+)\s+\(")
 
 
@@ -89,9 +89,8 @@ def main(argv=None) -> int:
     args = parse_args(argv)
     out = Path(args.out)
     (out / "episodes").mkdir(parents=True, exist_ok=True)
-    commit = subprocess.run(["git", "-C", str(REPO), "rev-parse", "HEAD"], capture_output=True, text=True).stdout.strip()
     with (out / "settings.jsonl").open("a") as f:  # one line per call: what each part of the data set was made with
-        f.write(json.dumps({**vars(args), "git_commit": commit, "started": time.strftime("%Y-%m-%dT%H:%M:%S")}) + "\n")
+        f.write(json.dumps({**vars(args), "git_commit": _git_commit(), "started": time.strftime("%Y-%m-%dT%H:%M:%S")}) + "\n")
     episodes = episodes_of(Path(args.anatomies), str(app_path("navigate")), args.seed)
     log = out / "plans.jsonl"
     done = {(d["anatomy"], d["target"], d["seed"]) for d in map(json.loads, log.read_text().splitlines())} \
